@@ -1,0 +1,2 @@
+//! viewer
+fn main() {}
