@@ -1,0 +1,494 @@
+//! The wgpu side of the 3D viewport: an egui_wgpu paint callback that draws the posed mesh,
+//! its wireframe and the overlay lines into an offscreen colour + depth target, then blits the
+//! image into egui's render pass. (egui's own pass has no depth buffer, neither in eframe nor in
+//! egui_kittest, so the 3D scene gets its own.)
+
+use std::sync::Arc;
+
+use egui_wgpu::wgpu;
+use egui_wgpu::wgpu::util::DeviceExt;
+
+use crate::posed_mesh::MeshVertex;
+
+/// Depth format of the offscreen pass.
+const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+
+/// One vertex of an overlay line (muscles, boxes, selection): position and RGBA colour.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct LineVertex {
+    /// World position (the basis' user frame).
+    pub position: [f32; 3],
+    /// Linear RGBA colour as written to the target.
+    pub color: [f32; 4],
+}
+
+/// Uniform block shared by the mesh, wireframe and line shaders (matches `viewport.wgsl`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct SceneUniforms {
+    /// `clip_from_world`, column major.
+    pub clip_from_world: [[f32; 4]; 4],
+    /// Eye position (w unused).
+    pub eye: [f32; 4],
+    /// Surface colour.
+    pub base_color: [f32; 4],
+    /// Wireframe colour.
+    pub wire_color: [f32; 4],
+}
+
+/// Everything one frame of the viewport needs. Buffers are shared (`Arc`) and re-uploaded
+/// only when their generation number changes.
+#[derive(Clone, Debug)]
+pub struct SceneFrame {
+    /// Identity of the triangle/edge topology; changes when another face is loaded.
+    pub topology_id: u64,
+    /// Triangle list indices.
+    pub triangles: Arc<Vec<u32>>,
+    /// Line-list indices of the unique edges (wireframe).
+    pub edges: Arc<Vec<u32>>,
+    /// Generation of [`SceneFrame::vertices`] (see [`crate::posed_mesh::PosedMesh::generation`]).
+    pub pose_generation: u64,
+    /// Posed vertices.
+    pub vertices: Arc<Vec<MeshVertex>>,
+    /// Generation of [`SceneFrame::lines`].
+    pub lines_generation: u64,
+    /// Overlay line list.
+    pub lines: Arc<Vec<LineVertex>>,
+    /// Camera and colours.
+    pub uniforms: SceneUniforms,
+    /// Draw filled, shaded triangles.
+    pub shaded: bool,
+    /// Draw the wireframe.
+    pub wireframe: bool,
+    /// Clear colour of the viewport.
+    pub background: wgpu::Color,
+}
+
+/// The paint callback put into egui's shape list for the viewport rectangle.
+pub struct ViewportCallback {
+    /// The frame to draw.
+    pub frame: SceneFrame,
+    /// Size of the viewport in physical pixels.
+    pub size_px: [u32; 2],
+}
+
+struct OffscreenTarget {
+    size: [u32; 2],
+    color_view: wgpu::TextureView,
+    depth_view: wgpu::TextureView,
+    blit_bind_group: wgpu::BindGroup,
+}
+
+#[derive(Default)]
+struct GpuBuffer {
+    buffer: Option<wgpu::Buffer>,
+    len: u32,
+}
+
+impl GpuBuffer {
+    fn upload(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        usage: wgpu::BufferUsages,
+        bytes: &[u8],
+        len: usize,
+        label: &str,
+    ) {
+        self.len = u32::try_from(len).unwrap_or(u32::MAX);
+        if bytes.is_empty() {
+            return;
+        }
+        match &self.buffer {
+            Some(b) if b.size() >= bytes.len() as u64 => queue.write_buffer(b, 0, bytes),
+            _ => {
+                self.buffer = Some(
+                    device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                        label: Some(label),
+                        contents: bytes,
+                        usage: usage | wgpu::BufferUsages::COPY_DST,
+                    }),
+                );
+            }
+        }
+    }
+}
+
+/// GPU state kept in egui_wgpu's callback resources between frames.
+struct GpuScene {
+    color_format: wgpu::TextureFormat,
+    mesh_pipeline: wgpu::RenderPipeline,
+    wire_pipeline: wgpu::RenderPipeline,
+    line_pipeline: wgpu::RenderPipeline,
+    blit_pipeline: wgpu::RenderPipeline,
+    blit_layout: wgpu::BindGroupLayout,
+    uniform_buffer: wgpu::Buffer,
+    uniform_bind_group: wgpu::BindGroup,
+    vertices: GpuBuffer,
+    triangles: GpuBuffer,
+    edges: GpuBuffer,
+    lines: GpuBuffer,
+    uploaded: Option<(u64, u64, u64)>,
+    target: Option<OffscreenTarget>,
+}
+
+/// Creates the pipelines and registers them with egui_wgpu; call once from the app's
+/// constructor with `cc.wgpu_render_state`.
+pub fn install(render_state: &egui_wgpu::RenderState) {
+    let scene = GpuScene::new(&render_state.device, render_state.target_format);
+    render_state
+        .renderer
+        .write()
+        .callback_resources
+        .insert(scene);
+}
+
+const MESH_LAYOUT: [wgpu::VertexAttribute; 2] =
+    wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3];
+const LINE_LAYOUT: [wgpu::VertexAttribute; 2] =
+    wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x4];
+
+impl GpuScene {
+    fn new(device: &wgpu::Device, color_format: wgpu::TextureFormat) -> Self {
+        let shader = device.create_shader_module(wgpu::include_wgsl!("viewport.wgsl"));
+        let blit_shader = device.create_shader_module(wgpu::include_wgsl!("blit.wgsl"));
+        let uniform_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("facebem uniforms"),
+            entries: &[wgpu::BindGroupLayoutEntry {
+                binding: 0,
+                visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
+                ty: wgpu::BindingType::Buffer {
+                    ty: wgpu::BufferBindingType::Uniform,
+                    has_dynamic_offset: false,
+                    min_binding_size: None,
+                },
+                count: None,
+            }],
+        });
+        let blit_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("facebem blit"),
+            entries: &[wgpu::BindGroupLayoutEntry {
+                binding: 0,
+                visibility: wgpu::ShaderStages::FRAGMENT,
+                ty: wgpu::BindingType::Texture {
+                    sample_type: wgpu::TextureSampleType::Float { filterable: false },
+                    view_dimension: wgpu::TextureViewDimension::D2,
+                    multisampled: false,
+                },
+                count: None,
+            }],
+        });
+        let scene_pl = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("facebem scene"),
+            bind_group_layouts: &[Some(&uniform_layout)],
+            immediate_size: 0,
+        });
+        let blit_pl = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("facebem blit"),
+            bind_group_layouts: &[Some(&blit_layout)],
+            immediate_size: 0,
+        });
+        let mesh_buffers = [Some(wgpu::VertexBufferLayout {
+            array_stride: size_of::<MeshVertex>() as u64,
+            step_mode: wgpu::VertexStepMode::Vertex,
+            attributes: &MESH_LAYOUT,
+        })];
+        let line_buffers = [Some(wgpu::VertexBufferLayout {
+            array_stride: size_of::<LineVertex>() as u64,
+            step_mode: wgpu::VertexStepMode::Vertex,
+            attributes: &LINE_LAYOUT,
+        })];
+        let depth = |write: bool| {
+            Some(wgpu::DepthStencilState {
+                format: DEPTH_FORMAT,
+                depth_write_enabled: Some(write),
+                depth_compare: Some(wgpu::CompareFunction::LessEqual),
+                stencil: wgpu::StencilState::default(),
+                bias: wgpu::DepthBiasState::default(),
+            })
+        };
+        let targets = [Some(wgpu::ColorTargetState {
+            format: color_format,
+            blend: Some(wgpu::BlendState::ALPHA_BLENDING),
+            write_mask: wgpu::ColorWrites::ALL,
+        })];
+        let make = |label: &str,
+                    vs: &str,
+                    fs: &str,
+                    buffers: &[Option<wgpu::VertexBufferLayout>],
+                    topology: wgpu::PrimitiveTopology,
+                    write_depth: bool| {
+            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                label: Some(label),
+                layout: Some(&scene_pl),
+                vertex: wgpu::VertexState {
+                    module: &shader,
+                    entry_point: Some(vs),
+                    compilation_options: Default::default(),
+                    buffers,
+                },
+                primitive: wgpu::PrimitiveState {
+                    topology,
+                    ..Default::default()
+                },
+                depth_stencil: depth(write_depth),
+                multisample: wgpu::MultisampleState::default(),
+                fragment: Some(wgpu::FragmentState {
+                    module: &shader,
+                    entry_point: Some(fs),
+                    compilation_options: Default::default(),
+                    targets: &targets,
+                }),
+                multiview_mask: None,
+                cache: None,
+            })
+        };
+        let mesh_pipeline = make(
+            "facebem mesh",
+            "vs_mesh",
+            "fs_mesh",
+            &mesh_buffers,
+            wgpu::PrimitiveTopology::TriangleList,
+            true,
+        );
+        let wire_pipeline = make(
+            "facebem wire",
+            "vs_wire",
+            "fs_wire",
+            &mesh_buffers,
+            wgpu::PrimitiveTopology::LineList,
+            false,
+        );
+        let line_pipeline = make(
+            "facebem lines",
+            "vs_line",
+            "fs_line",
+            &line_buffers,
+            wgpu::PrimitiveTopology::LineList,
+            false,
+        );
+        let blit_pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("facebem blit"),
+            layout: Some(&blit_pl),
+            vertex: wgpu::VertexState {
+                module: &blit_shader,
+                entry_point: Some("vs_blit"),
+                compilation_options: Default::default(),
+                buffers: &[],
+            },
+            primitive: wgpu::PrimitiveState::default(),
+            depth_stencil: None,
+            multisample: wgpu::MultisampleState::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &blit_shader,
+                entry_point: Some("fs_blit"),
+                compilation_options: Default::default(),
+                targets: &[Some(wgpu::ColorTargetState {
+                    format: color_format,
+                    blend: None,
+                    write_mask: wgpu::ColorWrites::ALL,
+                })],
+            }),
+            multiview_mask: None,
+            cache: None,
+        });
+        let uniform_buffer = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("facebem uniforms"),
+            size: size_of::<SceneUniforms>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let uniform_bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("facebem uniforms"),
+            layout: &uniform_layout,
+            entries: &[wgpu::BindGroupEntry {
+                binding: 0,
+                resource: uniform_buffer.as_entire_binding(),
+            }],
+        });
+        GpuScene {
+            color_format,
+            mesh_pipeline,
+            wire_pipeline,
+            line_pipeline,
+            blit_pipeline,
+            blit_layout,
+            uniform_buffer,
+            uniform_bind_group,
+            vertices: GpuBuffer::default(),
+            triangles: GpuBuffer::default(),
+            edges: GpuBuffer::default(),
+            lines: GpuBuffer::default(),
+            uploaded: None,
+            target: None,
+        }
+    }
+
+    fn ensure_target(&mut self, device: &wgpu::Device, size: [u32; 2]) {
+        if self.target.as_ref().is_some_and(|t| t.size == size) {
+            return;
+        }
+        let extent = wgpu::Extent3d {
+            width: size[0],
+            height: size[1],
+            depth_or_array_layers: 1,
+        };
+        let texture = |label: &str, format: wgpu::TextureFormat, usage: wgpu::TextureUsages| {
+            device.create_texture(&wgpu::TextureDescriptor {
+                label: Some(label),
+                size: extent,
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format,
+                usage,
+                view_formats: &[],
+            })
+        };
+        let color = texture(
+            "facebem viewport colour",
+            self.color_format,
+            wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
+        );
+        let depth = texture(
+            "facebem viewport depth",
+            DEPTH_FORMAT,
+            wgpu::TextureUsages::RENDER_ATTACHMENT,
+        );
+        let color_view = color.create_view(&wgpu::TextureViewDescriptor::default());
+        let depth_view = depth.create_view(&wgpu::TextureViewDescriptor::default());
+        let blit_bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("facebem blit"),
+            layout: &self.blit_layout,
+            entries: &[wgpu::BindGroupEntry {
+                binding: 0,
+                resource: wgpu::BindingResource::TextureView(&color_view),
+            }],
+        });
+        self.target = Some(OffscreenTarget {
+            size,
+            color_view,
+            depth_view,
+            blit_bind_group,
+        });
+    }
+
+    fn upload(&mut self, device: &wgpu::Device, queue: &wgpu::Queue, frame: &SceneFrame) {
+        let key = (
+            frame.topology_id,
+            frame.pose_generation,
+            frame.lines_generation,
+        );
+        let old = self.uploaded;
+        if old.map(|o| o.0) != Some(key.0) {
+            let usage = wgpu::BufferUsages::INDEX;
+            let tri = bytemuck::cast_slice(&frame.triangles);
+            self.triangles
+                .upload(device, queue, usage, tri, frame.triangles.len(), "tris");
+            let edges = bytemuck::cast_slice(&frame.edges);
+            self.edges
+                .upload(device, queue, usage, edges, frame.edges.len(), "edges");
+        }
+        if old.map(|o| (o.0, o.1)) != Some((key.0, key.1)) {
+            let bytes = bytemuck::cast_slice(&frame.vertices);
+            let usage = wgpu::BufferUsages::VERTEX;
+            let n = frame.vertices.len();
+            self.vertices
+                .upload(device, queue, usage, bytes, n, "vertices");
+        }
+        if old.map(|o| o.2) != Some(key.2) {
+            let bytes = bytemuck::cast_slice(&frame.lines);
+            let usage = wgpu::BufferUsages::VERTEX;
+            self.lines
+                .upload(device, queue, usage, bytes, frame.lines.len(), "lines");
+        }
+        self.uploaded = Some(key);
+        queue.write_buffer(&self.uniform_buffer, 0, bytemuck::bytes_of(&frame.uniforms));
+    }
+
+    fn draw(&self, encoder: &mut wgpu::CommandEncoder, frame: &SceneFrame) {
+        let Some(target) = &self.target else { return };
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("facebem viewport"),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view: &target.color_view,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(frame.background),
+                    store: wgpu::StoreOp::Store,
+                },
+            })],
+            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                view: &target.depth_view,
+                depth_ops: Some(wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(1.0),
+                    store: wgpu::StoreOp::Discard,
+                }),
+                stencil_ops: None,
+            }),
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        pass.set_bind_group(0, &self.uniform_bind_group, &[]);
+        let mesh_ready = self.vertices.len > 0;
+        if let (true, Some(vb)) = (mesh_ready, &self.vertices.buffer) {
+            pass.set_vertex_buffer(0, vb.slice(..));
+            if let (true, Some(ib)) = (
+                frame.shaded && self.triangles.len > 0,
+                &self.triangles.buffer,
+            ) {
+                pass.set_pipeline(&self.mesh_pipeline);
+                pass.set_index_buffer(ib.slice(..), wgpu::IndexFormat::Uint32);
+                pass.draw_indexed(0..self.triangles.len, 0, 0..1);
+            }
+            if let (true, Some(eb)) = (frame.wireframe && self.edges.len > 0, &self.edges.buffer) {
+                pass.set_pipeline(&self.wire_pipeline);
+                pass.set_index_buffer(eb.slice(..), wgpu::IndexFormat::Uint32);
+                pass.draw_indexed(0..self.edges.len, 0, 0..1);
+            }
+        }
+        if let (true, Some(lb)) = (self.lines.len > 0, &self.lines.buffer) {
+            pass.set_pipeline(&self.line_pipeline);
+            pass.set_vertex_buffer(0, lb.slice(..));
+            pass.draw(0..self.lines.len, 0..1);
+        }
+    }
+}
+
+impl egui_wgpu::CallbackTrait for ViewportCallback {
+    fn prepare(
+        &self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        _screen_descriptor: &egui_wgpu::ScreenDescriptor,
+        egui_encoder: &mut wgpu::CommandEncoder,
+        resources: &mut egui_wgpu::CallbackResources,
+    ) -> Vec<wgpu::CommandBuffer> {
+        let Some(scene) = resources.get_mut::<GpuScene>() else {
+            return Vec::new();
+        };
+        let size = [self.size_px[0].max(1), self.size_px[1].max(1)];
+        scene.ensure_target(device, size);
+        scene.upload(device, queue, &self.frame);
+        scene.draw(egui_encoder, &self.frame);
+        Vec::new()
+    }
+
+    fn paint(
+        &self,
+        _info: egui::PaintCallbackInfo,
+        render_pass: &mut wgpu::RenderPass<'static>,
+        resources: &egui_wgpu::CallbackResources,
+    ) {
+        let Some(scene) = resources.get::<GpuScene>() else {
+            return;
+        };
+        let Some(target) = &scene.target else { return };
+        render_pass.set_pipeline(&scene.blit_pipeline);
+        render_pass.set_bind_group(0, &target.blit_bind_group, &[]);
+        render_pass.draw(0..3, 0..1);
+    }
+}
