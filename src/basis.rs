@@ -63,7 +63,9 @@ impl MuscleBasis {
 
     /// Index of the muscle with identifier `id`, if any.
     pub fn muscle_index(&self, id: &str) -> Option<usize> {
-        self.muscle_ids.iter().position(|m| m.eq_ignore_ascii_case(id))
+        self.muscle_ids
+            .iter()
+            .position(|m| m.eq_ignore_ascii_case(id))
     }
 
     /// Checks that `sliders` has one finite value in [−1, 1] per muscle.

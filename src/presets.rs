@@ -1,0 +1,174 @@
+//! Expression presets: named slider combinations of the ten standard muscles.
+//!
+//! Slider convention (DESIGN.md "Muscles"): a NEGATIVE value contracts the muscle, a positive one
+//! relaxes it (moves the tissue the other way). Each preset says which FACS action units (AU) it
+//! stands for. The rig has ten muscles only, so several AUs are approximated by the closest muscle
+//! the rig has; the approximation is stated next to each preset:
+//!
+//! - frontalis contraction ≈ AU1 + AU2 (inner and outer brow raiser); frontalis *relaxation*
+//!   pushes the brow down and stands in for AU4 (brow lowerer, corrugator — not in the rig);
+//! - levator labii superioris ≈ AU10 (upper lip raiser), with some AU9 (nose wrinkler);
+//! - zygomaticus major ≈ AU12 (lip corner puller); it also lifts the cheek a little (AU6);
+//! - mentalis ≈ AU17 (chin raiser);
+//! - depressor labii inferioris ≈ AU16 (lower lip depressor) and, pulling the lower lip down and
+//!   out, the lips-part/jaw-drop look of AU25/AU26 and the lip stretch of AU20.
+//!
+//! ```
+//! use facebem::presets::{self, Preset};
+//! use face_prep::MuscleKind;
+//! let happy = presets::find("happy").unwrap();
+//! assert!(happy.slider(MuscleKind::ZygomaticusMajorL) < 0.0); // contracted
+//! assert_eq!(presets::find("hate").unwrap().name, "disgust");
+//! ```
+
+use face_prep::MuscleKind;
+
+/// One named expression: a value in [−1, 1] for each of the ten standard muscles.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Preset {
+    /// Identifier used by the CLI (`--preset happy`), the viewer and glTF target names.
+    pub name: &'static str,
+    /// FACS action units this preset stands for.
+    pub action_units: &'static str,
+    /// One-line description of the combination.
+    pub description: &'static str,
+    /// Slider values in the order of [`MuscleKind::ALL`] (negative = contract).
+    pub sliders: [f64; 10],
+}
+
+/// Other accepted names for a preset (`alias`, `preset name`).
+pub const ALIASES: [(&str, &str); 4] = [
+    ("hate", "disgust"),
+    ("surprise", "surprised"),
+    ("anger", "angry"),
+    ("sadness", "sad"),
+];
+
+// Slider order: frontalis L R, levator labii sup. L R, zygomaticus major L R, mentalis L R,
+// depressor labii inf. L R.
+/// All presets, `neutral` first.
+pub const ALL: [Preset; 9] = [
+    Preset {
+        name: "neutral",
+        action_units: "AU0",
+        description: "every muscle at rest",
+        sliders: [0.0; 10],
+    },
+    Preset {
+        name: "happy",
+        action_units: "AU6 + AU12",
+        description: "zygomaticus major contracted, cheeks and upper lip slightly raised",
+        sliders: [0.0, 0.0, -0.2, -0.2, -0.8, -0.8, 0.0, 0.0, 0.0, 0.0],
+    },
+    Preset {
+        name: "smile",
+        action_units: "AU12",
+        description: "closed-lip smile: zygomaticus major only",
+        sliders: [0.0, 0.0, 0.0, 0.0, -0.5, -0.5, 0.0, 0.0, 0.0, 0.0],
+    },
+    Preset {
+        name: "laugh",
+        action_units: "AU6 + AU12 + AU25 + AU26",
+        description: "full zygomaticus pull, upper lip up, lower lip down, brows slightly up",
+        sliders: [-0.2, -0.2, -0.4, -0.4, -1.0, -1.0, 0.0, 0.0, -0.5, -0.5],
+    },
+    Preset {
+        name: "sad",
+        action_units: "AU1 + AU4 + AU15 + AU17",
+        description: "inner brow up, lip corners down (zygomaticus relaxed), chin raised",
+        sliders: [-0.4, -0.4, 0.0, 0.0, 0.4, 0.4, -0.5, -0.5, -0.3, -0.3],
+    },
+    Preset {
+        name: "angry",
+        action_units: "AU4 + AU10 + AU17 + AU23",
+        description: "brow pushed down (frontalis relaxed), upper lip raised, chin raised",
+        sliders: [0.7, 0.7, -0.4, -0.4, 0.2, 0.2, -0.6, -0.6, 0.0, 0.0],
+    },
+    Preset {
+        name: "surprised",
+        action_units: "AU1 + AU2 + AU5 + AU26",
+        description: "brows fully raised, lower lip dropped",
+        sliders: [-1.0, -1.0, 0.0, 0.0, 0.0, 0.0, 0.3, 0.3, -0.6, -0.6],
+    },
+    Preset {
+        name: "disgust",
+        action_units: "AU9 + AU10 + AU16 + AU17",
+        description: "upper lip raised hard, lower lip down and out, brow slightly lowered",
+        sliders: [0.3, 0.3, -1.0, -1.0, 0.0, 0.0, -0.3, -0.3, -0.4, -0.4],
+    },
+    Preset {
+        name: "fear",
+        action_units: "AU1 + AU2 + AU4 + AU20 + AU26",
+        description: "brows raised, lips stretched and parted",
+        sliders: [-0.8, -0.8, 0.0, 0.0, -0.2, -0.2, -0.2, -0.2, -0.7, -0.7],
+    },
+];
+
+/// Finds a preset by name or alias (case-insensitive, surrounding spaces ignored).
+pub fn find(name: &str) -> Option<&'static Preset> {
+    let name = name.trim();
+    let canonical = ALIASES
+        .iter()
+        .find(|(alias, _)| alias.eq_ignore_ascii_case(name))
+        .map_or(name, |(_, target)| *target);
+    ALL.iter().find(|p| p.name.eq_ignore_ascii_case(canonical))
+}
+
+/// Names of all presets, in order (for help texts and error messages).
+pub fn names() -> Vec<&'static str> {
+    ALL.iter().map(|p| p.name).collect()
+}
+
+impl Preset {
+    /// Slider value of one standard muscle.
+    pub fn slider(&self, muscle: MuscleKind) -> f64 {
+        self.sliders[muscle.index()]
+    }
+
+    /// The slider vector for a basis whose muscles are named `muscle_ids` (e.g.
+    /// [`crate::MuscleBasis::muscle_ids`]): standard muscles get the preset value, any other
+    /// (user-defined) muscle gets 0.
+    pub fn sliders_for(&self, muscle_ids: &[String]) -> Vec<f64> {
+        muscle_ids
+            .iter()
+            .map(|id| MuscleKind::from_id(id).map_or(0.0, |m| self.slider(m)))
+            .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn presets_are_in_range_symmetric_and_unique() {
+        for (i, p) in ALL.iter().enumerate() {
+            for m in MuscleKind::ALL {
+                let s = p.slider(m);
+                assert!((-1.0..=1.0).contains(&s), "{} {}", p.name, m.id());
+                assert_eq!(s, p.slider(m.mirror()), "{} is not L/R symmetric", p.name);
+            }
+            for q in &ALL[i + 1..] {
+                assert_ne!(p.name, q.name);
+                assert_ne!(p.sliders, q.sliders, "{} == {}", p.name, q.name);
+            }
+        }
+        assert!(ALL[0].sliders.iter().all(|&s| s == 0.0));
+    }
+
+    #[test]
+    fn find_accepts_names_and_aliases() {
+        for p in &ALL {
+            assert_eq!(find(&p.name.to_uppercase()).map(|q| q.name), Some(p.name));
+        }
+        assert_eq!(find(" hate ").map(|p| p.name), Some("disgust"));
+        assert_eq!(find("grumpy"), None);
+    }
+
+    #[test]
+    fn sliders_for_maps_by_id_and_zeroes_unknown_muscles() {
+        let ids = vec!["mentalis_r".to_string(), "my_extra".to_string()];
+        let s = find("sad").unwrap().sliders_for(&ids);
+        assert_eq!(s, vec![-0.5, 0.0]);
+    }
+}
