@@ -2,6 +2,7 @@
 
 mod atomic_write;
 mod basis;
+pub mod cache;
 pub mod export;
 pub mod large_face;
 pub mod presets;

@@ -1,0 +1,3 @@
+//! On-disk cache of a computed face model (placeholder until the pipeline lands).
+
+pub mod container;

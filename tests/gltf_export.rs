@@ -1,0 +1,107 @@
+//! glTF export on a small analytic basis: Khronos glTF-Validator (0 errors) and a re-read with
+//! the gltf crate that compares every morph target with the basis.
+
+mod support;
+
+use facebem::MuscleBasis;
+use facebem::export::{GltfParams, write_gltf};
+use glam::DVec3;
+
+/// A bumpy 12 x 12 grid with two "muscles": a smooth upward bulge and a sideways shear.
+fn grid_basis() -> MuscleBasis {
+    let n = 12u32;
+    let mut neutral = vec![];
+    for y in 0..n {
+        for x in 0..n {
+            let (fx, fy) = (f64::from(x) / 11.0, f64::from(y) / 11.0);
+            neutral.push(DVec3::new(fx, fy, 0.1 * (3.0 * fx).sin() * fy));
+        }
+    }
+    let mut triangles = vec![];
+    for y in 0..n - 1 {
+        for x in 0..n - 1 {
+            let v = y * n + x;
+            triangles.push([v, v + 1, v + n + 1]);
+            triangles.push([v, v + n + 1, v + n]);
+        }
+    }
+    let bulge = neutral
+        .iter()
+        .map(|p| DVec3::Z * 0.05 * (-(p.x - 0.5).powi(2) * 10.0).exp())
+        .collect();
+    let shear = neutral.iter().map(|p| DVec3::X * 0.02 * p.y).collect();
+    MuscleBasis {
+        muscle_ids: vec!["zygomaticus_major_l".into(), "frontalis_r".into()],
+        neutral,
+        triangles,
+        displacements: vec![bulge, shear],
+    }
+}
+
+fn check_file(path: &std::path::Path, basis: &MuscleBasis) {
+    support::assert_valid(path);
+    let (doc, buffers, _) = gltf::import(path).expect("gltf crate re-reads the export");
+    let mesh = doc.meshes().next().expect("one mesh");
+    let names: Vec<String> = mesh
+        .extras()
+        .as_ref()
+        .map(|raw| {
+            let v: serde_json::Value = serde_json::from_str(raw.get()).unwrap();
+            v["targetNames"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|s| s.as_str().unwrap().to_string())
+                .collect()
+        })
+        .unwrap_or_default();
+    // 2 muscles x 2 actions + 8 presets (neutral is the base mesh).
+    assert_eq!(names.len(), 2 * 2 + 8, "{names:?}");
+    assert_eq!(names[0], "zygomaticus_major_l_contract");
+    assert_eq!(names[3], "frontalis_r_relax");
+    assert!(names.contains(&"preset_happy".to_string()));
+    let prim = mesh.primitives().next().unwrap();
+    let reader = prim.reader(|b| Some(&buffers[b.index()]));
+    let positions: Vec<[f32; 3]> = reader.read_positions().unwrap().collect();
+    for (p, q) in positions.iter().zip(&basis.neutral) {
+        assert_eq!(*p, q.as_vec3().to_array());
+    }
+    let indices: Vec<u32> = reader.read_indices().unwrap().into_u32().collect();
+    assert_eq!(indices.len(), basis.triangles.len() * 3);
+    let targets: Vec<Vec<[f32; 3]>> = reader
+        .read_morph_targets()
+        .map(|(p, _, _)| p.unwrap().collect())
+        .collect();
+    assert_eq!(targets.len(), names.len());
+    // contract = -D, relax = +D, exactly (f32 of the f64 field).
+    for k in 0..2 {
+        for (v, d) in basis.displacements[k].iter().enumerate() {
+            assert_eq!(targets[2 * k][v], (-*d).as_vec3().to_array());
+            assert_eq!(targets[2 * k + 1][v], d.as_vec3().to_array());
+        }
+    }
+    // The happy preset target equals the pose's displacement (f32 tolerance 1e-7 relative).
+    let happy = facebem::presets::find("happy").unwrap();
+    let posed = basis.pose(&happy.sliders_for(&basis.muscle_ids)).unwrap();
+    let t = names.iter().position(|n| n == "preset_happy").unwrap();
+    for v in 0..posed.len() {
+        let expect = posed[v] - basis.neutral[v];
+        let got = glam::Vec3::from(targets[t][v]).as_dvec3();
+        assert!(
+            (got - expect).length() < 1e-7,
+            "vertex {v}: {got} vs {expect}"
+        );
+    }
+    assert_eq!(doc.animations().count(), 1);
+}
+
+#[test]
+fn glb_and_gltf_validate_and_reread_exactly() {
+    let basis = grid_basis();
+    let dir = tempfile::tempdir().unwrap();
+    for name in ["grid.glb", "grid.gltf"] {
+        let path = dir.path().join(name);
+        write_gltf(&path, &basis, &GltfParams::default()).unwrap();
+        check_file(&path, &basis);
+    }
+}
