@@ -12,7 +12,6 @@ use crate::camera::OrbitCamera;
 use crate::job::Job;
 use crate::picking::{TriangleHit, pick_triangle};
 use crate::posed_mesh::{MeshVertex, PosedMesh, bounding_sphere, edge_indices};
-use crate::presets::PRESETS;
 use crate::renderer::{LineVertex, SceneFrame, SceneUniforms, ViewportCallback};
 use crate::source::{self, OpenError};
 
@@ -64,6 +63,25 @@ pub struct StatusMessage {
     pub is_error: bool,
 }
 
+/// What an export button writes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ExportKind {
+    /// `<name>_pose.obj`: the current pose as a plain OBJ.
+    ObjPose,
+    /// `<name>.glb`: glTF 2.0 with one morph target per muscle and preset.
+    Gltf,
+}
+
+impl ExportKind {
+    /// Button label.
+    pub fn label(self) -> &'static str {
+        match self {
+            ExportKind::ObjPose => "Export OBJ pose",
+            ExportKind::Gltf => "Export glTF",
+        }
+    }
+}
+
 /// The viewer application state.
 pub struct ViewerApp {
     options: ViewerOptions,
@@ -81,6 +99,8 @@ pub struct ViewerApp {
     open_path: String,
     message: Option<StatusMessage>,
     loading: Option<Job<LoadedFace>>,
+    exporting: Option<Job<String>>,
+    export_dir: String,
     selected: Option<TriangleHit>,
     has_wgpu: bool,
     frames_with_face: u32,
@@ -120,6 +140,10 @@ impl ViewerApp {
             open_path: String::new(),
             message: None,
             loading: None,
+            exporting: None,
+            export_dir: std::env::current_dir()
+                .map(|d| d.display().to_string())
+                .unwrap_or_else(|_| ".".to_owned()),
             selected: None,
             has_wgpu,
             frames_with_face: 0,
@@ -194,7 +218,45 @@ impl ViewerApp {
 
     /// Whether a background job is running.
     pub fn is_busy(&self) -> bool {
-        self.loading.is_some()
+        self.loading.is_some() || self.exporting.is_some()
+    }
+
+    /// Sets the folder exports are written to.
+    pub fn set_export_dir(&mut self, dir: &Path) {
+        self.export_dir = dir.display().to_string();
+    }
+
+    /// Starts writing the current face in the background (`kind` says what); the outcome is
+    /// reported in the status message.
+    pub fn export(&mut self, ctx: &egui::Context, kind: ExportKind) {
+        let Some(face) = &self.face else { return };
+        let stem = Path::new(&face.name)
+            .file_stem()
+            .map_or_else(|| "face".to_owned(), |s| s.to_string_lossy().into_owned());
+        let dir = PathBuf::from(self.export_dir.trim());
+        let basis = face.basis.clone();
+        let sliders = self.sliders.clone();
+        let job = Job::spawn(kind.label(), Some(ctx.clone()), move |ctl| {
+            ctl.report("writing", 0.0);
+            let path = match kind {
+                ExportKind::ObjPose => {
+                    let path = dir.join(format!("{stem}_pose.obj"));
+                    let posed = basis.pose(&sliders).map_err(|e| e.to_string())?;
+                    let text = facebem::export::obj::plain_obj(&posed, &basis.triangles);
+                    facebem::write_atomic(&path, text.as_bytes()).map_err(|e| e.to_string())?;
+                    path
+                }
+                ExportKind::Gltf => {
+                    let path = dir.join(format!("{stem}.glb"));
+                    let params = facebem::export::GltfParams::default();
+                    facebem::export::write_gltf(&path, &basis, &params)
+                        .map_err(|e| e.to_string())?;
+                    path
+                }
+            };
+            Ok(format!("Exported {}", path.display()))
+        });
+        self.exporting = Some(job);
     }
 
     /// The camera (for tests and scripted views).
@@ -223,6 +285,22 @@ impl ViewerApp {
     }
 
     fn poll_jobs(&mut self) {
+        if let Some(job) = &mut self.exporting
+            && let Some(result) = job.poll()
+        {
+            let label = job.label().to_owned();
+            self.exporting = None;
+            self.message = Some(match result {
+                Ok(text) => StatusMessage {
+                    text,
+                    is_error: false,
+                },
+                Err(e) => StatusMessage {
+                    text: format!("{label} failed: {e}"),
+                    is_error: true,
+                },
+            });
+        }
         let Some(job) = &mut self.loading else { return };
         let Some(result) = job.poll() else { return };
         let label = job.label().to_owned();
@@ -308,11 +386,12 @@ impl ViewerApp {
                 self.sliders.iter_mut().for_each(|s| *s = 0.0);
                 changed = true;
             }
-            for preset in PRESETS {
-                if ui
-                    .add_enabled(!ids.is_empty(), egui::Button::new(preset.name))
-                    .clicked()
-                {
+            for preset in facebem::presets::ALL.iter().filter(|p| p.name != "neutral") {
+                let button = egui::Button::new(preset_label(preset.name));
+                let r = ui
+                    .add_enabled(!ids.is_empty(), button)
+                    .on_hover_text(format!("{} ({})", preset.description, preset.action_units));
+                if r.clicked() {
                     self.sliders = preset.sliders_for(&ids);
                     changed = true;
                 }
@@ -333,9 +412,33 @@ impl ViewerApp {
             ui.separator();
             ui.label(format!("Selected triangle {}", hit.triangle));
         }
+        ui.separator();
+        ui.strong("Export");
+        ui.horizontal(|ui| {
+            let label = ui.label("Export folder");
+            ui.add(egui::TextEdit::singleline(&mut self.export_dir).desired_width(180.0))
+                .labelled_by(label.id);
+        });
+        ui.horizontal_wrapped(|ui| {
+            let idle = self.exporting.is_none();
+            for kind in [ExportKind::ObjPose, ExportKind::Gltf] {
+                if ui
+                    .add_enabled(idle, egui::Button::new(kind.label()))
+                    .clicked()
+                {
+                    self.export(ui.ctx(), kind);
+                }
+            }
+        });
     }
 
     fn status_bar(&mut self, ui: &mut egui::Ui) {
+        if let Some(job) = &self.exporting {
+            ui.horizontal(|ui| {
+                ui.spinner();
+                ui.label(job.label());
+            });
+        }
         let Some(job) = &self.loading else {
             ui.label(if self.has_wgpu {
                 "Ready"
@@ -469,7 +572,7 @@ impl ViewerApp {
         if self.ready_at.is_none() && self.frames_with_face >= 3 {
             self.ready_at = Some(Instant::now());
             if let Some(path) = &self.options.ready_file
-                && let Err(e) = write_atomically(path, b"ready\n")
+                && let Err(e) = facebem::write_atomic(path, b"ready\n")
             {
                 self.message = Some(StatusMessage {
                     text: format!("Cannot write the ready file {}: {e}", path.display()),
@@ -528,15 +631,10 @@ fn file_name(path: &Path) -> String {
     )
 }
 
-/// Writes `bytes` to `path` through a temporary file in the same directory and a rename.
-pub fn write_atomically(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
-    let dir = path
-        .parent()
-        .filter(|d| !d.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
-    let tmp = dir.join(format!(".{}.tmp{}", file_name(path), std::process::id()));
-    std::fs::write(&tmp, bytes)?;
-    std::fs::rename(&tmp, path).inspect_err(|_| {
-        let _ = std::fs::remove_file(&tmp);
-    })
+/// Button label of a preset: its name with a capital first letter ("smile" → "Smile").
+pub fn preset_label(name: &str) -> String {
+    let mut c = name.chars();
+    c.next()
+        .map(|f| f.to_uppercase().chain(c).collect())
+        .unwrap_or_default()
 }

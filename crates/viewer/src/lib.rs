@@ -19,7 +19,6 @@ pub mod camera;
 pub mod job;
 pub mod picking;
 pub mod posed_mesh;
-pub mod presets;
 pub mod renderer;
 pub mod source;
 

@@ -67,7 +67,10 @@ fn a_preset_button_sets_its_sliders_and_pose() {
     harness.get_by_label("Smile").click();
     harness.run();
     let sliders = harness.state().sliders().to_vec();
-    let want = viewer::presets::PRESETS[0].sliders_for(&basis.muscle_ids);
+    let want = facebem::presets::find("smile")
+        .unwrap()
+        .sliders_for(&basis.muscle_ids);
+    assert!(want.iter().any(|s| *s != 0.0));
     assert_eq!(sliders, want);
     let expected = basis.pose(&want).unwrap();
     for (u, e) in harness.state().uploaded_vertices().iter().zip(&expected) {
@@ -132,4 +135,38 @@ fn the_default_face_opens_in_the_background_on_start() {
     );
     let msg = harness.state().message().cloned().unwrap();
     assert!(!msg.is_error, "{}", msg.text);
+}
+
+#[test]
+fn export_buttons_write_the_posed_obj_and_a_glb() {
+    let dir = tempfile::tempdir().unwrap();
+    let basis = common::synthetic_default_basis();
+    let mut harness = common::harness_with(Some(basis.clone()));
+    harness.state_mut().set_export_dir(dir.path());
+    harness
+        .get_by_role_and_label(Role::Slider, "Depressor labii inferioris R")
+        .set_value_accesskit(-0.75);
+    harness.run();
+    harness.get_by_label("Export OBJ pose").click();
+    harness.step();
+    common::wait_idle(&mut harness);
+    let obj = dir.path().join("mediapipe_canonical_4loop_pose.obj");
+    let msg = harness.state().message().cloned().unwrap();
+    assert!(!msg.is_error, "{}", msg.text);
+    let written = viewer::source::load_neutral(&obj).unwrap();
+    let expected = basis.pose(harness.state().sliders()).unwrap();
+    assert_eq!(written.triangles, basis.triangles);
+    for (w, e) in written.neutral.iter().zip(&expected) {
+        // tobj reads f32: the written pose matches to f32 precision.
+        assert!(
+            (*w - *e).abs().max_element() <= 1e-6 * e.abs().max_element().max(1.0),
+            "{w} vs {e}"
+        );
+    }
+
+    harness.get_by_label("Export glTF").click();
+    harness.step();
+    common::wait_idle(&mut harness);
+    let glb = std::fs::read(dir.path().join("mediapipe_canonical_4loop.glb")).unwrap();
+    assert_eq!(&glb[..4], b"glTF");
 }

@@ -22,7 +22,10 @@ impl Drop for KillOnDrop {
 fn wait_for(what: &str, limit: Duration, mut done: impl FnMut() -> bool) {
     let start = Instant::now();
     while !done() {
-        assert!(start.elapsed() < limit, "gave up waiting for {what} after {limit:?}");
+        assert!(
+            start.elapsed() < limit,
+            "gave up waiting for {what} after {limit:?}"
+        );
         std::thread::sleep(Duration::from_millis(50));
     }
 }
@@ -44,7 +47,9 @@ fn real_window_under_xvfb_shows_the_face_and_closes_cleanly() {
         .expect("Xvfb not found: apt-get install xvfb xauth imagemagick (or FACEBEM_SKIP_XVFB=1)");
     let _xvfb = KillOnDrop(xvfb);
     let socket = format!("/tmp/.X11-unix/X{display_number}");
-    wait_for("the Xvfb socket", Duration::from_secs(30), || Path::new(&socket).exists());
+    wait_for("the Xvfb socket", Duration::from_secs(30), || {
+        Path::new(&socket).exists()
+    });
 
     let runtime = dir.path().join("runtime");
     std::fs::create_dir(&runtime).unwrap();
@@ -62,20 +67,27 @@ fn real_window_under_xvfb_shows_the_face_and_closes_cleanly() {
         .env_remove("WAYLAND_DISPLAY")
         .env("XDG_RUNTIME_DIR", &runtime)
         .env("XDG_CACHE_HOME", dir.path().join("cache"))
-        .env("WGPU_BACKEND", std::env::var("WGPU_BACKEND").unwrap_or("vulkan".into()))
+        .env(
+            "WGPU_BACKEND",
+            std::env::var("WGPU_BACKEND").unwrap_or("vulkan".into()),
+        )
         .stdout(Stdio::null())
         .stderr(Stdio::piped())
         .spawn()
         .expect("start the viewer binary");
     let started = Instant::now();
     let mut exited = None;
-    wait_for("the viewer to draw the face", Duration::from_secs(300), || {
-        if let Ok(Some(status)) = viewer.try_wait() {
-            exited = Some(status);
-            return true;
-        }
-        ready.exists()
-    });
+    wait_for(
+        "the viewer to draw the face",
+        Duration::from_secs(300),
+        || {
+            if let Ok(Some(status)) = viewer.try_wait() {
+                exited = Some(status);
+                return true;
+            }
+            ready.exists()
+        },
+    );
     assert!(exited.is_none(), "the viewer exited early: {exited:?}");
 
     let shot = dir.path().join("shot.png");
@@ -90,7 +102,10 @@ fn real_window_under_xvfb_shows_the_face_and_closes_cleanly() {
         if let Some(s) = viewer.try_wait().unwrap() {
             break s;
         }
-        assert!(started.elapsed() < Duration::from_secs(300), "the viewer did not close");
+        assert!(
+            started.elapsed() < Duration::from_secs(300),
+            "the viewer did not close"
+        );
         std::thread::sleep(Duration::from_millis(50));
     };
     let mut stderr = String::new();
@@ -98,7 +113,10 @@ fn real_window_under_xvfb_shows_the_face_and_closes_cleanly() {
         use std::io::Read;
         let _ = e.read_to_string(&mut stderr);
     }
-    assert!(status.success(), "viewer exit status {status}; stderr:\n{stderr}");
+    assert!(
+        status.success(),
+        "viewer exit status {status}; stderr:\n{stderr}"
+    );
 
     let img = image::open(&shot).unwrap().to_rgba8();
     assert_eq!(img.dimensions(), (1280, 800));
