@@ -206,6 +206,19 @@ impl ViewerApp {
         &self.sliders
     }
 
+    /// Sets every slider at once (clamped to −1…1; extra or missing values are ignored) and
+    /// re-blends the pose, as moving the sliders would.
+    pub fn set_sliders(&mut self, values: &[f64]) {
+        for (s, v) in self.sliders.iter_mut().zip(values) {
+            *s = if v.is_finite() {
+                v.clamp(-1.0, 1.0)
+            } else {
+                0.0
+            };
+        }
+        self.repose();
+    }
+
     /// The vertices handed to the renderer in the last frame (CPU blend of the basis).
     pub fn uploaded_vertices(&self) -> &[MeshVertex] {
         &self.uploaded_vertices
