@@ -1,0 +1,447 @@
+//! Direct column-block assembly of the mixed system `K x = y`.
+//!
+//! Column block j (3 contiguous columns of the column-major K) is produced by one rayon task:
+//! the H block column of element j when its traction is prescribed, −G when its displacement is.
+//! The H blocks of displacement-prescribed columns go straight into the right-hand sides
+//! (`y −= H_ij u_j` for every load case at once) and every H block is added to a per-thread row
+//! sum, from which the diagonal blocks `h_ii = −Σ_{j≠i} h_ij` (rigid-body trick, eq. 4.5) are
+//! put in at the end. Neither H nor G is ever held whole.
+
+use std::sync::Mutex;
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+use faer::{Mat, MatMut};
+use glam::DVec3;
+use rayon::prelude::*;
+
+use crate::kernels::{Block, KernelConstants};
+use crate::quadrature::ElementQuad;
+use crate::singular::g_diagonal;
+use crate::{BemError, Control, Loads, Material, QuadratureParams, SolveParams, Stage, SurfaceMesh};
+
+/// What to do with a problem that prescribes no displacement anywhere (rigid-body modes).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+pub enum RigidModes {
+    /// Reject it with [`BemError::PureTraction`].
+    #[default]
+    Reject,
+    /// Fix the gauge: the six rigid modes are removed from the displacement by six Lagrange
+    /// multipliers (area-weighted mean translation and rotation of the boundary are zero).
+    /// Only used when no displacement is prescribed.
+    Fix,
+}
+
+/// The assembled dense system: `matrix · x = rhs`, x = (u on traction-prescribed elements,
+/// t on displacement-prescribed ones) per element in element order, one column per load case.
+#[derive(Debug, Clone)]
+pub struct LinearSystem {
+    /// K (3N × 3N, or 3N+6 with the gauge fixed).
+    pub matrix: Mat<f64>,
+    /// Right-hand sides, one column per load case.
+    pub rhs: Mat<f64>,
+    /// Which elements have a prescribed displacement.
+    pub prescribed: Vec<bool>,
+    /// The prescribed values (copied for unpacking the solution).
+    pub loads: Loads,
+    /// Whether six gauge rows/columns were appended.
+    pub gauge_fixed: bool,
+}
+
+/// Per-thread accumulators: H row sums and right-hand sides.
+struct Partial {
+    row_sums: Vec<Block>,
+    rhs: Vec<f64>,
+}
+
+impl Partial {
+    fn new(n: usize, dof: usize, rhs_count: usize) -> Self {
+        Self {
+            row_sums: vec![[[0.0; 3]; 3]; n],
+            rhs: vec![0.0; dof * rhs_count],
+        }
+    }
+}
+
+/// Allocates a zero dense matrix, reporting allocation failure instead of aborting.
+pub(crate) fn try_zeros(rows: usize, cols: usize) -> Result<Mat<f64>, BemError> {
+    let oom = BemError::OutOfMemory {
+        rows,
+        cols,
+        bytes: rows.saturating_mul(cols).saturating_mul(8),
+    };
+    let mut m = Mat::<f64>::new();
+    m.try_reserve(rows, cols).map_err(|_| oom)?;
+    m.resize_with(rows, cols, |_, _| 0.0);
+    Ok(m)
+}
+
+/// The three contiguous column slices of a 3-column block.
+fn three_columns<'a>(block: MatMut<'a, f64>) -> Option<[&'a mut [f64]; 3]> {
+    let mut it = block
+        .col_iter_mut()
+        .map(|c| c.try_as_col_major_mut().map(|c| c.as_slice_mut()));
+    let c0 = it.next()??;
+    let c1 = it.next()??;
+    let c2 = it.next()??;
+    Some([c0, c1, c2])
+}
+
+/// Rigid-body modes (3 translations, 3 rotations about the area centroid) evaluated at the element
+/// centroids and weighted by relative area: `modes[k][e]` is mode k's vector on element e.
+fn rigid_mode_rows(mesh: &SurfaceMesh) -> [Vec<DVec3>; 6] {
+    let n = mesh.element_count();
+    let total: f64 = mesh.areas().iter().sum();
+    let center = mesh
+        .centroids()
+        .iter()
+        .zip(mesh.areas())
+        .map(|(c, a)| *c * *a)
+        .sum::<DVec3>()
+        / total;
+    let radius = mesh
+        .centroids()
+        .iter()
+        .map(|c| (*c - center).length())
+        .fold(0.0, f64::max)
+        .max(f64::MIN_POSITIVE);
+    let max_area = mesh.areas().iter().copied().fold(0.0, f64::max);
+    let axes = [DVec3::X, DVec3::Y, DVec3::Z];
+    std::array::from_fn(|k| {
+        (0..n)
+            .map(|e| {
+                let w = mesh.area(e) / max_area;
+                if k < 3 {
+                    axes[k] * w
+                } else {
+                    axes[k - 3].cross(mesh.centroid(e) - center) / radius * w
+                }
+            })
+            .collect()
+    })
+}
+
+impl LinearSystem {
+    /// Assembles K and the right-hand sides for the given split of elements into
+    /// displacement-prescribed (`prescribed[e] == true`) and traction-prescribed ones, with one
+    /// load case per right-hand side in `loads`.
+    pub fn assemble(
+        mesh: &SurfaceMesh,
+        material: &Material,
+        prescribed: &[bool],
+        loads: &Loads,
+        params: &SolveParams,
+        control: &Control<'_>,
+    ) -> Result<Self, BemError> {
+        let n = mesh.element_count();
+        for (what, got) in [
+            ("prescribed mask", prescribed.len()),
+            ("loads", loads.element_count()),
+        ] {
+            if got != n {
+                return Err(BemError::WrongLength {
+                    what,
+                    expected: n,
+                    got,
+                });
+            }
+        }
+        let any_prescribed = prescribed.iter().any(|&p| p);
+        let gauge_fixed = match (any_prescribed, params.rigid_modes) {
+            (true, _) => false,
+            (false, RigidModes::Reject) => return Err(BemError::PureTraction),
+            (false, RigidModes::Fix) => true,
+        };
+        control.check()?;
+        let dof = 3 * n;
+        let size = dof + if gauge_fixed { 6 } else { 0 };
+        let rhs_count = loads.rhs_count();
+        let mut matrix = try_zeros(size, size)?;
+        let consts = KernelConstants::new(material);
+        let quads: Vec<ElementQuad> = (0..n).map(|e| ElementQuad::new(mesh, e)).collect();
+        let centroids = mesh.centroids();
+        let modes = gauge_fixed.then(|| rigid_mode_rows(mesh));
+        let threads = rayon::current_num_threads().max(1);
+        let partials: Vec<Mutex<Partial>> = (0..threads)
+            .map(|_| Mutex::new(Partial::new(n, dof, rhs_count)))
+            .collect();
+        let done = AtomicUsize::new(0);
+        let step = (n / 100).max(1);
+        let qp = params.quadrature;
+        control.report(Stage::Assembly, 0, n);
+
+        matrix
+            .par_col_chunks_mut(3)
+            .enumerate()
+            .try_for_each(|(j, block)| -> Result<(), BemError> {
+                control.check()?;
+                let cols = three_columns(block).ok_or(BemError::NonFinite {
+                    what: "column layout of K (not contiguous)",
+                })?;
+                if j >= n {
+                    // gauge columns: R (rigid modes) in the displacement rows
+                    if let Some(modes) = &modes {
+                        for (c, col) in cols.into_iter().enumerate() {
+                            let mode = &modes[3 * (j - n) + c];
+                            for (e, v) in mode.iter().enumerate() {
+                                col[3 * e..3 * e + 3].copy_from_slice(&v.to_array());
+                            }
+                        }
+                    }
+                    return Ok(());
+                }
+                let slot = rayon::current_thread_index().unwrap_or(0) % threads;
+                let mut guard = partials[slot].lock().unwrap_or_else(|e| e.into_inner());
+                let partial = &mut *guard;
+                assemble_column(
+                    j,
+                    cols,
+                    &quads,
+                    centroids,
+                    &consts,
+                    &qp,
+                    prescribed[j],
+                    loads.of(j),
+                    mesh,
+                    material,
+                    partial,
+                    dof,
+                    modes.as_ref(),
+                )?;
+                let d = done.fetch_add(1, Ordering::Relaxed) + 1;
+                if d % step == 0 || d == n {
+                    control.report(Stage::Assembly, d, n);
+                }
+                Ok(())
+            })?;
+
+        // reduce the per-thread partials
+        let mut total = Partial::new(n, dof, rhs_count);
+        for p in partials {
+            let p = p.into_inner().unwrap_or_else(|e| e.into_inner());
+            for (t, s) in total.row_sums.iter_mut().zip(&p.row_sums) {
+                for a in 0..3 {
+                    for b in 0..3 {
+                        t[a][b] += s[a][b];
+                    }
+                }
+            }
+            for (t, s) in total.rhs.iter_mut().zip(&p.rhs) {
+                *t += s;
+            }
+        }
+        // diagonal H blocks: into K for traction-prescribed elements, into y for the others
+        let mut rhs = try_zeros(size, rhs_count)?;
+        for r in 0..rhs_count {
+            for (row, v) in total.rhs[r * dof..(r + 1) * dof].iter().enumerate() {
+                rhs[(row, r)] = *v;
+            }
+        }
+        for i in 0..n {
+            let s = total.row_sums[i];
+            let h_ii: Block = std::array::from_fn(|a| std::array::from_fn(|b| -s[a][b]));
+            if prescribed[i] {
+                for &(r, u) in loads.of(i) {
+                    let u = u.to_array();
+                    for a in 0..3 {
+                        rhs[(3 * i + a, r as usize)] -=
+                            h_ii[a][0] * u[0] + h_ii[a][1] * u[1] + h_ii[a][2] * u[2];
+                    }
+                }
+            } else {
+                for a in 0..3 {
+                    for b in 0..3 {
+                        matrix[(3 * i + a, 3 * i + b)] = h_ii[a][b];
+                    }
+                }
+            }
+        }
+        control.report(Stage::Assembly, n, n);
+        Ok(Self {
+            matrix,
+            rhs,
+            prescribed: prescribed.to_vec(),
+            loads: loads.clone(),
+            gauge_fixed,
+        })
+    }
+}
+
+/// Fills column block `j` of K and accumulates its contributions to the row sums and the rhs.
+#[allow(clippy::too_many_arguments)] // one column task's whole context
+fn assemble_column(
+    j: usize,
+    cols: [&mut [f64]; 3],
+    quads: &[ElementQuad],
+    centroids: &[DVec3],
+    consts: &KernelConstants,
+    qp: &QuadratureParams,
+    is_prescribed: bool,
+    values: &[(u32, DVec3)],
+    mesh: &SurfaceMesh,
+    material: &Material,
+    partial: &mut Partial,
+    dof: usize,
+    modes: Option<&[Vec<DVec3>; 6]>,
+) -> Result<(), BemError> {
+    let [c0, c1, c2] = cols;
+    let q = &quads[j];
+    let need_u = is_prescribed || !values.is_empty();
+    let n = quads.len();
+    for i in 0..n {
+        if i == j {
+            continue;
+        }
+        let m = q.moments(centroids[i], qp, need_u);
+        let h = consts.t_block(&m, q.normal);
+        let rs = &mut partial.row_sums[i];
+        for a in 0..3 {
+            for b in 0..3 {
+                rs[a][b] += h[a][b];
+            }
+        }
+        let row = 3 * i;
+        if is_prescribed {
+            let g = consts.u_block(&m);
+            for a in 0..3 {
+                c0[row + a] = -g[a][0];
+                c1[row + a] = -g[a][1];
+                c2[row + a] = -g[a][2];
+            }
+            for &(r, u) in values {
+                let y = &mut partial.rhs[r as usize * dof + row..r as usize * dof + row + 3];
+                for a in 0..3 {
+                    y[a] -= h[a][0] * u.x + h[a][1] * u.y + h[a][2] * u.z;
+                }
+            }
+        } else {
+            for a in 0..3 {
+                c0[row + a] = h[a][0];
+                c1[row + a] = h[a][1];
+                c2[row + a] = h[a][2];
+            }
+            if !values.is_empty() {
+                let g = consts.u_block(&m);
+                for &(r, t) in values {
+                    let y = &mut partial.rhs[r as usize * dof + row..r as usize * dof + row + 3];
+                    for a in 0..3 {
+                        y[a] += g[a][0] * t.x + g[a][1] * t.y + g[a][2] * t.z;
+                    }
+                }
+            }
+        }
+    }
+    // singular diagonal G block (analytic)
+    if need_u {
+        let g = g_diagonal(mesh, j, material).ok_or(BemError::NonFinite {
+            what: "analytic diagonal G block (centroid not inside its element)",
+        })?;
+        let row = 3 * j;
+        if is_prescribed {
+            for a in 0..3 {
+                c0[row + a] = -g[a][0];
+                c1[row + a] = -g[a][1];
+                c2[row + a] = -g[a][2];
+            }
+        } else {
+            for &(r, t) in values {
+                let y = &mut partial.rhs[r as usize * dof + row..r as usize * dof + row + 3];
+                for a in 0..3 {
+                    y[a] += g[a][0] * t.x + g[a][1] * t.y + g[a][2] * t.z;
+                }
+            }
+        }
+    }
+    // gauge rows: Rᵀ
+    if let Some(modes) = modes {
+        for (k, mode) in modes.iter().enumerate() {
+            let v = mode[j];
+            c0[dof + k] = v.x;
+            c1[dof + k] = v.y;
+            c2[dof + k] = v.z;
+        }
+    }
+    Ok(())
+}
+
+/// Full H and G matrices (3N × 3N each) assembled naively and single-threaded, element pair by
+/// element pair with full kernel matrices at every quadrature point. For small meshes, research
+/// and tests, and as the naive baseline of the benchmark; the solver never calls it.
+/// `H` includes the rigid-body diagonal blocks, `G` the analytic ones.
+pub fn assemble_h_g(
+    mesh: &SurfaceMesh,
+    material: &Material,
+    params: &QuadratureParams,
+) -> Result<(Mat<f64>, Mat<f64>), BemError> {
+    use crate::kernels::{kelvin_t, kelvin_u};
+    let n = mesh.element_count();
+    let mut h = try_zeros(3 * n, 3 * n)?;
+    let mut g = try_zeros(3 * n, 3 * n)?;
+    for i in 0..n {
+        let p = mesh.centroid(i);
+        let mut diag = [[0.0; 3]; 3];
+        for j in 0..n {
+            let (hb, gb) = if i == j {
+                let gb = g_diagonal(mesh, j, material).ok_or(BemError::NonFinite {
+                    what: "analytic diagonal G block",
+                })?;
+                ([[0.0; 3]; 3], gb)
+            } else {
+                let mut points = Vec::new();
+                collect_points(p, mesh.corners(j), mesh.area(j), params, 0, &mut points);
+                let nj = mesh.normal(j);
+                let mut hb = [[0.0; 3]; 3];
+                let mut gb = [[0.0; 3]; 3];
+                for (q, w) in points {
+                    let t = kelvin_t(q - p, nj, material);
+                    let u = kelvin_u(q - p, material);
+                    for a in 0..3 {
+                        for b in 0..3 {
+                            hb[a][b] += w * t[a][b];
+                            gb[a][b] += w * u[a][b];
+                        }
+                    }
+                }
+                (hb, gb)
+            };
+            for a in 0..3 {
+                for b in 0..3 {
+                    h[(3 * i + a, 3 * j + b)] = hb[a][b];
+                    g[(3 * i + a, 3 * j + b)] = gb[a][b];
+                    diag[a][b] -= hb[a][b];
+                }
+            }
+        }
+        for a in 0..3 {
+            for b in 0..3 {
+                h[(3 * i + a, 3 * i + b)] = diag[a][b];
+            }
+        }
+    }
+    Ok((h, g))
+}
+
+/// Quadrature points of the adaptive rule (same criterion as the assembly) as a list.
+fn collect_points(
+    p: DVec3,
+    c: [DVec3; 3],
+    area: f64,
+    params: &QuadratureParams,
+    depth: u32,
+    out: &mut Vec<(DVec3, f64)>,
+) {
+    let centroid = (c[0] + c[1] + c[2]) / 3.0;
+    let longest = (c[1] - c[0])
+        .length()
+        .max((c[2] - c[1]).length())
+        .max((c[0] - c[2]).length());
+    if depth < params.max_depth && (p - centroid).length() < params.near_factor * longest {
+        let m01 = 0.5 * (c[0] + c[1]);
+        let m12 = 0.5 * (c[1] + c[2]);
+        let m20 = 0.5 * (c[2] + c[0]);
+        for sub in [[c[0], m01, m20], [m01, c[1], m12], [m20, m12, c[2]], [m01, m12, m20]] {
+            collect_points(p, sub, 0.25 * area, params, depth + 1, out);
+        }
+    } else {
+        out.extend(crate::quadrature::seven_points(c, area));
+    }
+}

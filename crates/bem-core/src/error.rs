@@ -1,0 +1,152 @@
+//! Typed errors of the solver.
+
+use thiserror::Error;
+
+/// Why a surface mesh was rejected by [`crate::SurfaceMesh::new`].
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum MeshError {
+    /// The mesh has no triangle.
+    #[error("the surface mesh has no triangles")]
+    Empty,
+    /// A vertex coordinate is NaN or infinite.
+    #[error("vertex {vertex} has a non-finite coordinate ({x}, {y}, {z})")]
+    NonFiniteVertex {
+        /// Index of the vertex.
+        vertex: usize,
+        /// x coordinate as read.
+        x: f64,
+        /// y coordinate as read.
+        y: f64,
+        /// z coordinate as read.
+        z: f64,
+    },
+    /// A triangle refers to a vertex that does not exist.
+    #[error("triangle {triangle} refers to vertex {index}, but the mesh has only {vertex_count} vertices")]
+    IndexOutOfRange {
+        /// Index of the triangle.
+        triangle: usize,
+        /// The offending vertex index.
+        index: u32,
+        /// Number of vertices in the mesh.
+        vertex_count: usize,
+    },
+    /// A triangle has (numerically) zero area or repeats a vertex.
+    #[error("triangle {triangle} is degenerate: area {area:e} for longest edge {longest_edge:e}")]
+    DegenerateTriangle {
+        /// Index of the triangle.
+        triangle: usize,
+        /// Its area.
+        area: f64,
+        /// Its longest edge.
+        longest_edge: f64,
+    },
+    /// An edge belongs to only one triangle: the surface is not closed.
+    #[error("edge ({a}, {b}) of triangle {triangle} is a boundary edge: the surface is not closed")]
+    OpenEdge {
+        /// First vertex of the edge.
+        a: u32,
+        /// Second vertex of the edge.
+        b: u32,
+        /// The only triangle using it.
+        triangle: usize,
+    },
+    /// An edge is shared by more than two triangles.
+    #[error("edge ({a}, {b}) is shared by {count} triangles (first: {triangle}): the surface is not edge-manifold")]
+    NonManifoldEdge {
+        /// First vertex of the edge.
+        a: u32,
+        /// Second vertex of the edge.
+        b: u32,
+        /// How many triangles use it.
+        count: usize,
+        /// One of these triangles.
+        triangle: usize,
+    },
+    /// Two triangles traverse a shared edge in the same direction.
+    #[error("triangles {first} and {second} both traverse edge ({a} -> {b}): orientation is inconsistent")]
+    InconsistentOrientation {
+        /// First vertex of the directed edge.
+        a: u32,
+        /// Second vertex of the directed edge.
+        b: u32,
+        /// First triangle.
+        first: usize,
+        /// Second triangle.
+        second: usize,
+    },
+    /// The enclosed volume is not positive: normals point inward.
+    #[error("the enclosed volume is {volume:e} (must be positive): the surface is oriented inward")]
+    NotOutward {
+        /// Signed enclosed volume.
+        volume: f64,
+    },
+}
+
+/// Errors of the boundary element solve.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum BemError {
+    /// Poisson ratio outside [0, 0.5).
+    #[error("Poisson ratio {0} is outside [0, 0.5)")]
+    InvalidPoisson(f64),
+    /// Shear modulus not a positive finite number.
+    #[error("shear modulus {0} must be positive and finite")]
+    InvalidShearModulus(f64),
+    /// The number of boundary conditions (or values) does not match the number of elements.
+    #[error("{what}: expected {expected} entries (one per element), got {got}")]
+    WrongLength {
+        /// Which input had the wrong length.
+        what: &'static str,
+        /// Number of elements.
+        expected: usize,
+        /// Number supplied.
+        got: usize,
+    },
+    /// A displacement group refers to an element that does not exist or is not displacement-prescribed.
+    #[error("group {group} refers to element {element}, which {reason}")]
+    BadGroupElement {
+        /// Index of the group.
+        group: usize,
+        /// Offending element index.
+        element: usize,
+        /// What is wrong with it.
+        reason: &'static str,
+    },
+    /// A prescribed value is NaN or infinite.
+    #[error("boundary value on element {element} is not finite")]
+    NonFiniteValue {
+        /// Element index.
+        element: usize,
+    },
+    /// No element has a prescribed displacement and the gauge was not fixed.
+    #[error("no element has a prescribed displacement: the pure-traction problem is singular (rigid-body modes); prescribe a displacement somewhere or set SolveParams::rigid_modes = RigidModes::Fix")]
+    PureTraction,
+    /// The system matrix is numerically singular.
+    #[error("the system matrix is numerically singular: pivot {index} has magnitude {pivot:e} against largest pivot {max_pivot:e}")]
+    Singular {
+        /// Index of the smallest pivot.
+        index: usize,
+        /// Its magnitude.
+        pivot: f64,
+        /// Largest pivot magnitude.
+        max_pivot: f64,
+    },
+    /// The matrix contains NaN or infinite entries.
+    #[error("the {what} contains non-finite entries")]
+    NonFinite {
+        /// Which matrix or vector.
+        what: &'static str,
+    },
+    /// The dense matrix could not be allocated.
+    #[error("cannot allocate a dense {rows}x{cols} matrix ({bytes} bytes)")]
+    OutOfMemory {
+        /// Rows.
+        rows: usize,
+        /// Columns.
+        cols: usize,
+        /// Bytes requested.
+        bytes: usize,
+    },
+    /// The computation was cancelled through [`crate::Control::cancel`].
+    #[error("cancelled")]
+    Cancelled,
+}

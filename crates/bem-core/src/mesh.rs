@@ -1,0 +1,235 @@
+//! Closed, outward-oriented triangle surface: the boundary of the elastic body.
+
+use std::collections::HashMap;
+
+use glam::DVec3;
+
+use crate::MeshError;
+
+/// Relative area below which a triangle counts as degenerate: area ≤ this × (longest edge)².
+const DEGENERATE_RELATIVE_AREA: f64 = 1e-10;
+
+/// A closed, edge-manifold, consistently and outward-oriented triangle surface with f64 vertices.
+///
+/// Each triangle is one constant boundary element whose collocation node is its centroid.
+/// Several closed components are allowed (a hollow sphere is an outer sphere plus an
+/// inward-facing inner sphere); what is checked is that every edge is shared by exactly two
+/// triangles traversing it in opposite directions and that the total enclosed volume is positive.
+#[derive(Debug, Clone)]
+pub struct SurfaceMesh {
+    vertices: Vec<DVec3>,
+    triangles: Vec<[u32; 3]>,
+    centroids: Vec<DVec3>,
+    normals: Vec<DVec3>,
+    areas: Vec<f64>,
+    longest_edges: Vec<f64>,
+}
+
+impl SurfaceMesh {
+    /// Validates and builds a surface mesh.
+    ///
+    /// ```
+    /// use bem_core::{shapes, SurfaceMesh};
+    /// let (v, t) = shapes::icosphere(1, 1.0);
+    /// let mesh = SurfaceMesh::new(v, t).unwrap();
+    /// assert_eq!(mesh.element_count(), 80);
+    /// ```
+    pub fn new(vertices: Vec<DVec3>, triangles: Vec<[u32; 3]>) -> Result<Self, MeshError> {
+        if triangles.is_empty() {
+            return Err(MeshError::Empty);
+        }
+        if let Some((vertex, v)) = vertices.iter().enumerate().find(|(_, v)| !v.is_finite()) {
+            return Err(MeshError::NonFiniteVertex {
+                vertex,
+                x: v.x,
+                y: v.y,
+                z: v.z,
+            });
+        }
+        let n = triangles.len();
+        let mut centroids = Vec::with_capacity(n);
+        let mut normals = Vec::with_capacity(n);
+        let mut areas = Vec::with_capacity(n);
+        let mut longest_edges = Vec::with_capacity(n);
+        for (t, tri) in triangles.iter().enumerate() {
+            for &index in tri {
+                if index as usize >= vertices.len() {
+                    return Err(MeshError::IndexOutOfRange {
+                        triangle: t,
+                        index,
+                        vertex_count: vertices.len(),
+                    });
+                }
+            }
+            let [a, b, c] = tri.map(|i| vertices[i as usize]);
+            let cross = (b - a).cross(c - a);
+            let area = 0.5 * cross.length();
+            let longest = (b - a)
+                .length()
+                .max((c - b).length())
+                .max((a - c).length());
+            if tri[0] == tri[1]
+                || tri[1] == tri[2]
+                || tri[0] == tri[2]
+                || !(area > DEGENERATE_RELATIVE_AREA * longest * longest)
+            {
+                return Err(MeshError::DegenerateTriangle {
+                    triangle: t,
+                    area,
+                    longest_edge: longest,
+                });
+            }
+            centroids.push((a + b + c) / 3.0);
+            normals.push(cross / (2.0 * area));
+            areas.push(area);
+            longest_edges.push(longest);
+        }
+        check_closed_manifold_oriented(&triangles)?;
+        let volume: f64 = triangles
+            .iter()
+            .map(|tri| {
+                let [a, b, c] = tri.map(|i| vertices[i as usize]);
+                a.dot(b.cross(c)) / 6.0
+            })
+            .sum();
+        if !(volume > 0.0) {
+            return Err(MeshError::NotOutward { volume });
+        }
+        Ok(Self {
+            vertices,
+            triangles,
+            centroids,
+            normals,
+            areas,
+            longest_edges,
+        })
+    }
+
+    /// Number of elements (triangles).
+    pub fn element_count(&self) -> usize {
+        self.triangles.len()
+    }
+
+    /// Vertices.
+    pub fn vertices(&self) -> &[DVec3] {
+        &self.vertices
+    }
+
+    /// Triangles (vertex indices, counter-clockwise seen from outside).
+    pub fn triangles(&self) -> &[[u32; 3]] {
+        &self.triangles
+    }
+
+    /// Corner positions of element `e`.
+    pub fn corners(&self, e: usize) -> [DVec3; 3] {
+        self.triangles[e].map(|i| self.vertices[i as usize])
+    }
+
+    /// Centroid (collocation node) of element `e`.
+    pub fn centroid(&self, e: usize) -> DVec3 {
+        self.centroids[e]
+    }
+
+    /// All centroids.
+    pub fn centroids(&self) -> &[DVec3] {
+        &self.centroids
+    }
+
+    /// Outward unit normal of element `e`.
+    pub fn normal(&self, e: usize) -> DVec3 {
+        self.normals[e]
+    }
+
+    /// All outward unit normals.
+    pub fn normals(&self) -> &[DVec3] {
+        &self.normals
+    }
+
+    /// Area of element `e`.
+    pub fn area(&self, e: usize) -> f64 {
+        self.areas[e]
+    }
+
+    /// All areas.
+    pub fn areas(&self) -> &[f64] {
+        &self.areas
+    }
+
+    /// Longest edge of element `e`.
+    pub fn longest_edge(&self, e: usize) -> f64 {
+        self.longest_edges[e]
+    }
+
+    /// Enclosed volume (positive for a valid mesh).
+    pub fn volume(&self) -> f64 {
+        self.triangles
+            .iter()
+            .map(|tri| {
+                let [a, b, c] = tri.map(|i| self.vertices[i as usize]);
+                a.dot(b.cross(c)) / 6.0
+            })
+            .sum()
+    }
+}
+
+/// Every undirected edge must be used exactly twice, once in each direction.
+fn check_closed_manifold_oriented(triangles: &[[u32; 3]]) -> Result<(), MeshError> {
+    // directed edge -> triangle
+    let mut directed: HashMap<(u32, u32), usize> = HashMap::with_capacity(triangles.len() * 3);
+    let mut undirected: HashMap<(u32, u32), (usize, usize)> =
+        HashMap::with_capacity(triangles.len() * 3 / 2);
+    for (t, tri) in triangles.iter().enumerate() {
+        for k in 0..3 {
+            let (a, b) = (tri[k], tri[(k + 1) % 3]);
+            let key = (a.min(b), a.max(b));
+            let entry = undirected.entry(key).or_insert((0, t));
+            entry.0 += 1;
+            if entry.0 > 2 {
+                return Err(MeshError::NonManifoldEdge {
+                    a: key.0,
+                    b: key.1,
+                    count: entry.0,
+                    triangle: entry.1,
+                });
+            }
+            if let Some(&first) = directed.get(&(a, b)) {
+                // counted later as non-manifold if a third use appears; here two uses in the same direction
+                let count = undirected.get(&key).map_or(0, |e| e.0);
+                if count <= 2 {
+                    // keep scanning for a third use first, to report the more fundamental problem
+                    let third = triangles.iter().enumerate().skip(t + 1).any(|(_, o)| {
+                        (0..3).any(|m| {
+                            let (p, q) = (o[m], o[(m + 1) % 3]);
+                            (p.min(q), p.max(q)) == key
+                        })
+                    });
+                    if third {
+                        return Err(MeshError::NonManifoldEdge {
+                            a: key.0,
+                            b: key.1,
+                            count: 3,
+                            triangle: first,
+                        });
+                    }
+                }
+                return Err(MeshError::InconsistentOrientation {
+                    a,
+                    b,
+                    first,
+                    second: t,
+                });
+            }
+            directed.insert((a, b), t);
+        }
+    }
+    let mut open: Vec<(u32, u32, usize)> = undirected
+        .iter()
+        .filter(|(_, (count, _))| *count == 1)
+        .map(|(&(a, b), &(_, t))| (a, b, t))
+        .collect();
+    open.sort_unstable();
+    if let Some(&(a, b, triangle)) = open.first() {
+        return Err(MeshError::OpenEdge { a, b, triangle });
+    }
+    Ok(())
+}
