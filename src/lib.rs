@@ -1,11 +1,39 @@
 //! facebem: one neutral face mesh in, a physically based muscle rig out.
+//!
+//! The face is offset into a closed elastic shell, feature boxes, muscles and skull are found
+//! automatically ([`face_prep`]), a constant-element elastostatic BEM ([`bem_core`]) is solved
+//! once with one right-hand side per muscle, and each muscle's response is stored per vertex
+//! ([`MuscleBasis`]) so sliders pose the face exactly: `v = v0 + Σ_k s_k · D_k`.
+//!
+//! ```no_run
+//! use facebem::{build_face_model, cache, presets, Control, PipelineParams};
+//! let (mesh, obj) = facebem::open::read_face("face.obj".as_ref())?;
+//! let control = Control::new().with_progress(|p| eprintln!("{} {}/{}", p.stage, p.done, p.total));
+//! let mut model = build_face_model(&mesh, &PipelineParams::default(), &control)?;
+//! model.obj_source = obj;
+//! cache::save("face.rig".as_ref(), &model)?;
+//! let sliders = presets::find("happy").unwrap().sliders_for(model.muscle_ids());
+//! model.write_obj("happy.obj".as_ref(), &sliders)?;
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
 
 mod atomic_write;
 mod basis;
 pub mod cache;
+mod control;
+pub mod describe;
 pub mod export;
 pub mod large_face;
+pub mod open;
+mod pipeline;
 pub mod presets;
+mod solve;
 
 pub use atomic_write::{WriteError, write_atomic};
 pub use basis::{MuscleBasis, PoseError};
+pub use control::{Control, Progress, Stage};
+pub use pipeline::{
+    FaceModel, PipelineError, PipelineParams, PrecomputeReport, PreparedRig, SimplifiedFace,
+    build_face_model, prep_rig, prepare,
+};
+pub use solve::element_to_vertex;

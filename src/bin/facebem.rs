@@ -1,1 +1,305 @@
-fn main() {}
+//! `facebem`: rig a face, inspect it, pose it, export it.
+//!
+//! ```text
+//! facebem rig face.obj -o face.rig [--muscles face.muscles]
+//! facebem info face.obj|face.rig
+//! facebem pose face.rig --preset happy --set zygomaticus_major_l=-0.8 -o out.obj
+//! facebem export face.rig --gltf out.glb
+//! facebem muscles face.obj -o face.muscles
+//! ```
+//!
+//! Errors print one line naming the problem and exit with status 1 (2 for usage errors).
+
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::time::Duration;
+
+use anyhow::{Context, Result, anyhow, bail};
+use clap::{Args, Parser, Subcommand};
+use facebem::large_face::LargeFaceParams;
+use facebem::open::{Opened, open};
+use facebem::{Control, FaceModel, PipelineParams, build_face_model, cache, presets};
+use indicatif::{ProgressBar, ProgressStyle};
+
+#[derive(Parser)]
+#[command(
+    name = "facebem",
+    version,
+    about = "Physically based facial muscle rig from one neutral face mesh"
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Build the rig and precompute the muscle basis; save it as a rig file.
+    Rig {
+        /// Face mesh (.obj, .gltf, .glb).
+        face: PathBuf,
+        /// Output rig file.
+        #[arg(short, long)]
+        output: PathBuf,
+        /// Use this (edited) muscle file instead of the automatic muscles.
+        #[arg(long)]
+        muscles: Option<PathBuf>,
+        #[command(flatten)]
+        solver: SolverArgs,
+    },
+    /// Print loops, feature boxes, muscles and sizes of a face or rig file.
+    Info {
+        /// Face mesh or rig file.
+        file: PathBuf,
+    },
+    /// Write an OBJ of a pose (a preset, then individual sliders on top).
+    Pose {
+        /// Rig file (or a face mesh, which is then computed first).
+        rig: PathBuf,
+        /// Slider value `muscle_id=value`, value in [-1, 1], negative contracts. Repeatable.
+        #[arg(long = "set", value_name = "ID=VALUE")]
+        sets: Vec<String>,
+        /// Expression preset applied first (neutral, happy, smile, laugh, sad, angry, surprised,
+        /// disgust, fear).
+        #[arg(long)]
+        preset: Option<String>,
+        /// Output OBJ.
+        #[arg(short, long)]
+        output: PathBuf,
+    },
+    /// Export glTF 2.0 with one morph target per muscle action and preset.
+    Export {
+        /// Rig file (or a face mesh, which is then computed first).
+        rig: PathBuf,
+        /// Output .glb or .gltf.
+        #[arg(long)]
+        gltf: PathBuf,
+        /// Leave out the animation that plays the presets.
+        #[arg(long)]
+        no_animation: bool,
+    },
+    /// Write the automatically placed muscles of a face as a muscle file (thesis format).
+    Muscles {
+        /// Face mesh (.obj, .gltf, .glb) or rig file.
+        face: PathBuf,
+        /// Output muscle file.
+        #[arg(short, long)]
+        output: PathBuf,
+    },
+}
+
+#[derive(Args)]
+struct SolverArgs {
+    /// Poisson ratio of the tissue, in [0, 0.5).
+    #[arg(long, default_value_t = 0.45)]
+    poisson: f64,
+    /// Faces with more front triangles than this are simulated on a simplified copy.
+    #[arg(long, default_value_t = LargeFaceParams::default().max_triangles)]
+    max_triangles: usize,
+    /// Triangle count of the simplified copy.
+    #[arg(long, default_value_t = LargeFaceParams::default().target_triangles)]
+    target_triangles: usize,
+}
+
+fn main() -> ExitCode {
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => {
+            let code = if e.use_stderr() { 2 } else { 0 };
+            let _ = e.print();
+            return ExitCode::from(code);
+        }
+    };
+    match run(cli) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn run(cli: Cli) -> Result<()> {
+    match cli.command {
+        Command::Rig {
+            face,
+            output,
+            muscles,
+            solver,
+        } => rig(&face, &output, muscles.as_deref(), &solver),
+        Command::Info { file } => info(&file),
+        Command::Pose {
+            rig,
+            sets,
+            preset,
+            output,
+        } => pose(&rig, &sets, preset.as_deref(), &output),
+        Command::Export {
+            rig,
+            gltf,
+            no_animation,
+        } => export(&rig, &gltf, no_animation),
+        Command::Muscles { face, output } => muscles(&face, &output),
+    }
+}
+
+fn progress_control() -> (Control, ProgressBar) {
+    let bar = ProgressBar::new(1);
+    bar.set_style(
+        ProgressStyle::with_template("{spinner} {elapsed:>4} {msg:>13} [{bar:30}] {pos}/{len}")
+            .unwrap_or_else(|_| ProgressStyle::default_bar())
+            .progress_chars("=> "),
+    );
+    bar.enable_steady_tick(Duration::from_millis(200));
+    let b = bar.clone();
+    let control = Control::new().with_progress(move |p| {
+        b.set_message(p.stage.label());
+        b.set_length(p.total);
+        b.set_position(p.done);
+    });
+    (control, bar)
+}
+
+fn compute(
+    mesh: &face_prep::FaceMesh,
+    obj_source: Option<String>,
+    params: &PipelineParams,
+) -> Result<FaceModel> {
+    let (control, bar) = progress_control();
+    let result = build_face_model(mesh, params, &control);
+    bar.finish_and_clear();
+    let mut model = result?;
+    model.obj_source = obj_source;
+    Ok(model)
+}
+
+/// A posable model from a rig file, or from a face mesh computed with default parameters.
+fn model_from(path: &Path) -> Result<FaceModel> {
+    match open(path)? {
+        Opened::Model(model) => Ok(*model),
+        Opened::Face { mesh, obj_source } => {
+            eprintln!("{} is a face mesh: computing its rig first", path.display());
+            compute(&mesh, obj_source, &PipelineParams::default())
+        }
+    }
+}
+
+fn rig(face: &Path, output: &Path, muscles: Option<&Path>, solver: &SolverArgs) -> Result<()> {
+    let (mesh, obj_source) = match open(face)? {
+        Opened::Face { mesh, obj_source } => (mesh, obj_source),
+        Opened::Model(_) => bail!("{} is already a rig file; give a face mesh", face.display()),
+    };
+    let mut params = PipelineParams {
+        poisson: solver.poisson,
+        large_face: LargeFaceParams {
+            max_triangles: solver.max_triangles,
+            target_triangles: solver.target_triangles,
+        },
+        ..PipelineParams::default()
+    };
+    if let Some(file) = muscles {
+        let rig = facebem::prep_rig(&mesh, &params)?;
+        let list = face_prep::muscle_file::load(file, rig.shell.element_count())
+            .with_context(|| format!("muscle file {}", file.display()))?;
+        params.muscles = Some(list);
+    }
+    let model = compute(&mesh, obj_source, &params)?;
+    cache::save(output, &model)?;
+    let r = &model.report;
+    println!(
+        "{}: {} front triangles ({} simulated), {} shell elements, {} muscles; prep {:.2} s, solve {:.2} s",
+        output.display(),
+        r.input_triangles,
+        r.simulated_triangles,
+        r.shell_elements,
+        model.basis.muscle_count(),
+        r.prep_seconds,
+        r.solve_seconds
+    );
+    Ok(())
+}
+
+fn info(file: &Path) -> Result<()> {
+    let opened = open(file)?;
+    let (rig, mesh, model) = match &opened {
+        Opened::Model(model) => (model.rig.clone(), &model.mesh, Some(model.as_ref())),
+        Opened::Face { mesh, .. } => (
+            facebem::prep_rig(mesh, &PipelineParams::default())?,
+            mesh,
+            None,
+        ),
+    };
+    print!("{}", facebem::describe::describe(file, mesh, &rig, model));
+    Ok(())
+}
+
+fn parse_set(s: &str) -> Result<(String, f64)> {
+    let (id, value) = s
+        .split_once('=')
+        .ok_or_else(|| anyhow!("--set {s:?}: expected muscle_id=value"))?;
+    let value: f64 = value
+        .trim()
+        .parse()
+        .with_context(|| format!("--set {s:?}: {value:?} is not a number"))?;
+    if !(-1.0..=1.0).contains(&value) {
+        bail!("--set {s:?}: value {value} is outside [-1, 1]");
+    }
+    Ok((id.trim().to_string(), value))
+}
+
+fn pose(rig: &Path, sets: &[String], preset: Option<&str>, output: &Path) -> Result<()> {
+    let parsed: Vec<(String, f64)> = sets.iter().map(|s| parse_set(s)).collect::<Result<_>>()?;
+    let preset = preset
+        .map(|name| {
+            presets::find(name).ok_or_else(|| {
+                anyhow!(
+                    "unknown preset {name:?} (known: {})",
+                    presets::names().join(", ")
+                )
+            })
+        })
+        .transpose()?;
+    let model = model_from(rig)?;
+    let ids = model.muscle_ids().to_vec();
+    let mut sliders = preset.map_or_else(|| vec![0.0; ids.len()], |p| p.sliders_for(&ids));
+    for (id, value) in parsed {
+        let k = model
+            .basis
+            .muscle_index(&id)
+            .ok_or_else(|| anyhow!("unknown muscle {id:?} (known: {})", ids.join(", ")))?;
+        sliders[k] = value;
+    }
+    model.write_obj(output, &sliders)?;
+    println!(
+        "{}: posed {} vertices",
+        output.display(),
+        model.mesh.vertices.len()
+    );
+    Ok(())
+}
+
+fn export(rig: &Path, gltf: &Path, no_animation: bool) -> Result<()> {
+    let model = model_from(rig)?;
+    let params = facebem::export::GltfParams {
+        animation: !no_animation,
+        ..Default::default()
+    };
+    model.write_gltf(gltf, &params)?;
+    println!(
+        "{}: {} morph targets",
+        gltf.display(),
+        2 * model.basis.muscle_count() + presets::ALL.len() - 1
+    );
+    Ok(())
+}
+
+fn muscles(face: &Path, output: &Path) -> Result<()> {
+    let rig = match open(face)? {
+        Opened::Model(model) => model.rig,
+        Opened::Face { mesh, .. } => facebem::prep_rig(&mesh, &PipelineParams::default())?,
+    };
+    face_prep::muscle_file::save(output, &rig.muscles)
+        .with_context(|| format!("cannot write {}", output.display()))?;
+    println!("{}: {} muscles", output.display(), rig.muscles.len());
+    Ok(())
+}

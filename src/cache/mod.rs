@@ -1,3 +1,173 @@
-//! On-disk cache of a computed face model (placeholder until the pipeline lands).
+//! On-disk cache of a computed [`FaceModel`]: rig + muscle basis + parameters, in a versioned,
+//! checksummed binary file ([`container`]) written atomically.
+//!
+//! [`load`] checks integrity only (magic, version, length, checksum, decoding); [`load_for`]
+//! also checks that the file was computed from the given mesh with the given parameters, so a
+//! caller can fall back to recomputing on any error.
+//!
+//! ```no_run
+//! use facebem::{cache, FaceModel};
+//! # fn demo(model: &FaceModel) -> Result<(), cache::CacheError> {
+//! cache::save("face.rig".as_ref(), model)?;
+//! let back = cache::load_for("face.rig".as_ref(), &model.mesh, &model.params)?;
+//! assert_eq!(back.basis, model.basis);
+//! # Ok(()) }
+//! ```
 
 pub mod container;
+
+use std::path::{Path, PathBuf};
+
+use face_prep::FaceMesh;
+
+use crate::atomic_write::{WriteError, write_atomic};
+use crate::pipeline::{FaceModel, PipelineParams};
+pub use container::{ContainerError, FORMAT_VERSION, Header, MAGIC};
+
+/// Errors saving or loading a cache file.
+#[derive(Debug, thiserror::Error)]
+pub enum CacheError {
+    /// The file could not be read.
+    #[error("cannot read cache {path}: {source}")]
+    Read {
+        /// The cache file.
+        path: PathBuf,
+        /// Underlying I/O error.
+        #[source]
+        source: std::io::Error,
+    },
+    /// The file could not be written.
+    #[error(transparent)]
+    Write(#[from] WriteError),
+    /// The file is damaged, of another version, or not a cache at all.
+    #[error("{path}: {source}")]
+    Container {
+        /// The cache file.
+        path: PathBuf,
+        /// What is wrong with it.
+        #[source]
+        source: ContainerError,
+    },
+    /// The cache was computed for another face mesh.
+    #[error("{path} was computed for another face mesh (mesh hash differs)")]
+    OtherMesh {
+        /// The cache file.
+        path: PathBuf,
+    },
+    /// The cache was computed with other parameters.
+    #[error("{path} was computed with other parameters")]
+    OtherParams {
+        /// The cache file.
+        path: PathBuf,
+    },
+}
+
+/// BLAKE3 hash of a face mesh's geometry (positions bit-exact, triangles, input order map).
+pub fn mesh_hash(mesh: &FaceMesh) -> [u8; 32] {
+    let mut h = blake3::Hasher::new();
+    h.update(b"facebem mesh v1");
+    h.update(&(mesh.vertices.len() as u64).to_le_bytes());
+    for v in &mesh.vertices {
+        for c in v.to_array() {
+            h.update(&c.to_bits().to_le_bytes());
+        }
+    }
+    h.update(&(mesh.triangles.len() as u64).to_le_bytes());
+    for t in &mesh.triangles {
+        for i in t {
+            h.update(&i.to_le_bytes());
+        }
+    }
+    h.update(&(mesh.input_to_vertex.len() as u64).to_le_bytes());
+    for i in &mesh.input_to_vertex {
+        h.update(&i.map_or(u32::MAX, |i| i).to_le_bytes());
+    }
+    *h.finalize().as_bytes()
+}
+
+/// BLAKE3 hash of all pipeline parameters (of their postcard encoding).
+pub fn params_hash(params: &PipelineParams) -> [u8; 32] {
+    let bytes = postcard::to_stdvec(params).unwrap_or_default();
+    *blake3::hash(&bytes).as_bytes()
+}
+
+/// Encodes a model as the bytes of a cache file.
+pub fn to_bytes(model: &FaceModel) -> Result<Vec<u8>, ContainerError> {
+    let header = Header {
+        input_hash: mesh_hash(&model.mesh),
+        params_hash: params_hash(&model.params),
+    };
+    container::encode(&header, model)
+}
+
+/// Saves `model` to `path` atomically.
+pub fn save(path: &Path, model: &FaceModel) -> Result<(), CacheError> {
+    let bytes = to_bytes(model).map_err(|source| CacheError::Container {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    write_atomic(path, &bytes)?;
+    Ok(())
+}
+
+/// Loads a cache file, checking magic, version, length and checksum.
+pub fn load(path: &Path) -> Result<FaceModel, CacheError> {
+    let bytes = std::fs::read(path).map_err(|source| CacheError::Read {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    let (header, model) = decode_checked(path, &bytes)?;
+    // The header's hashes must describe the payload (else the file was spliced together).
+    if header.input_hash != mesh_hash(&model.mesh) {
+        return Err(CacheError::OtherMesh {
+            path: path.to_path_buf(),
+        });
+    }
+    Ok(model)
+}
+
+/// Loads a cache file and checks that it was computed for `mesh` with `params`.
+pub fn load_for(
+    path: &Path,
+    mesh: &FaceMesh,
+    params: &PipelineParams,
+) -> Result<FaceModel, CacheError> {
+    let bytes = std::fs::read(path).map_err(|source| CacheError::Read {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    // Cheap header check first: a cache for another mesh is rejected without decoding it.
+    let header = container::read_header(&bytes).map_err(|source| CacheError::Container {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    if header.input_hash != mesh_hash(mesh) {
+        return Err(CacheError::OtherMesh {
+            path: path.to_path_buf(),
+        });
+    }
+    if header.params_hash != params_hash(params) {
+        return Err(CacheError::OtherParams {
+            path: path.to_path_buf(),
+        });
+    }
+    let (_, model) = decode_checked(path, &bytes)?;
+    if model.mesh != *mesh {
+        return Err(CacheError::OtherMesh {
+            path: path.to_path_buf(),
+        });
+    }
+    Ok(model)
+}
+
+/// Whether `bytes` start like a facebem cache file.
+pub fn is_cache(bytes: &[u8]) -> bool {
+    bytes.starts_with(&MAGIC)
+}
+
+fn decode_checked(path: &Path, bytes: &[u8]) -> Result<(Header, FaceModel), CacheError> {
+    container::decode(bytes).map_err(|source| CacheError::Container {
+        path: path.to_path_buf(),
+        source,
+    })
+}

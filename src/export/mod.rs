@@ -44,3 +44,26 @@ pub fn write_gltf(
     write_atomic(path, &bytes)?;
     Ok(())
 }
+
+impl crate::FaceModel {
+    /// OBJ text of the pose `sliders`: the user's own OBJ with only `v` lines replaced when the
+    /// face came from an OBJ file, otherwise a plain OBJ of the welded mesh.
+    pub fn obj_text(&self, sliders: &[f64]) -> Result<String, ExportError> {
+        let posed = self.basis.pose(sliders)?;
+        Ok(match &self.obj_source {
+            Some(text) => obj::pose_from_template(text, &self.mesh.input_to_vertex, &posed)?,
+            None => obj::plain_obj(&posed, &self.basis.triangles),
+        })
+    }
+
+    /// Writes the pose `sliders` as OBJ to `path` (atomically).
+    pub fn write_obj(&self, path: &Path, sliders: &[f64]) -> Result<(), ExportError> {
+        write_atomic(path, self.obj_text(sliders)?.as_bytes())?;
+        Ok(())
+    }
+
+    /// Writes the glTF morph-target export to `path` (atomically; `.gltf` or `.glb`).
+    pub fn write_gltf(&self, path: &Path, params: &GltfParams) -> Result<(), ExportError> {
+        write_gltf(path, &self.basis, params)
+    }
+}

@@ -1,0 +1,174 @@
+//! Conveniences for applications: open a face file or a saved rig, compute-and-cache a face,
+//! the bundled default face.
+
+use std::path::{Path, PathBuf};
+
+use face_prep::FaceMesh;
+
+use crate::cache::{self, CacheError};
+use crate::control::Control;
+use crate::pipeline::{FaceModel, PipelineError, PipelineParams, build_face_model};
+
+/// File name of the bundled default face (the smallest asset, MediaPipe canonical face).
+pub const DEFAULT_FACE_NAME: &str = "mediapipe_canonical_4loop.obj";
+
+/// OBJ text of the bundled default face, compiled into the library.
+pub const DEFAULT_FACE_OBJ: &str = include_str!("../assets/mediapipe_canonical_4loop.obj");
+
+/// Errors opening a face or rig.
+#[derive(Debug, thiserror::Error)]
+pub enum OpenError {
+    /// The file could not be read.
+    #[error("cannot read {path}: {source}")]
+    Read {
+        /// The file.
+        path: PathBuf,
+        /// Underlying I/O error.
+        #[source]
+        source: std::io::Error,
+    },
+    /// The face mesh is invalid.
+    #[error("{path}: {source}")]
+    Face {
+        /// The file.
+        path: PathBuf,
+        /// What is wrong with it.
+        #[source]
+        source: face_prep::PrepError,
+    },
+    /// The rig/cache file is invalid.
+    #[error(transparent)]
+    Cache(#[from] CacheError),
+    /// Computing the model failed.
+    #[error(transparent)]
+    Pipeline(#[from] PipelineError),
+}
+
+/// What a file turned out to hold.
+#[derive(Debug)]
+pub enum Opened {
+    /// A face mesh that still needs [`build_face_model`]; `obj_source` is its OBJ text if any.
+    Face {
+        /// The validated mesh.
+        mesh: FaceMesh,
+        /// The OBJ text (for exports in the user's own layout), `None` for glTF input.
+        obj_source: Option<String>,
+    },
+    /// A saved rig (cache file) with its basis, ready to pose.
+    Model(Box<FaceModel>),
+}
+
+/// Opens `path`: a facebem rig/cache file (recognised by its magic bytes, whatever its name),
+/// an OBJ, or a glTF/GLB face.
+pub fn open(path: &Path) -> Result<Opened, OpenError> {
+    let bytes = std::fs::read(path).map_err(|source| OpenError::Read {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    if cache::is_cache(&bytes) {
+        return Ok(Opened::Model(Box::new(cache::load(path)?)));
+    }
+    let (mesh, obj_source) = face_from_bytes(path, &bytes)?;
+    Ok(Opened::Face { mesh, obj_source })
+}
+
+/// Reads a face mesh file (OBJ, glTF, GLB), keeping the OBJ text for exports.
+pub fn read_face(path: &Path) -> Result<(FaceMesh, Option<String>), OpenError> {
+    let bytes = std::fs::read(path).map_err(|source| OpenError::Read {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    face_from_bytes(path, &bytes)
+}
+
+fn face_from_bytes(path: &Path, bytes: &[u8]) -> Result<(FaceMesh, Option<String>), OpenError> {
+    let face_err = |source| OpenError::Face {
+        path: path.to_path_buf(),
+        source,
+    };
+    let is_obj = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case("obj"));
+    if is_obj {
+        let text = String::from_utf8_lossy(bytes).into_owned();
+        let mesh = FaceMesh::from_obj_str(&text).map_err(face_err)?;
+        Ok((mesh, Some(text)))
+    } else {
+        let mesh = face_prep::load_face(path).map_err(face_err)?;
+        Ok((mesh, None))
+    }
+}
+
+/// Whether a cache was used or the model was computed.
+#[derive(Clone, Debug, PartialEq)]
+pub enum CacheStatus {
+    /// The cache file matched and was loaded.
+    Loaded,
+    /// The model was computed and saved; `reason` says why the cache was not used.
+    Computed {
+        /// Why the cache could not be used (missing, corrupt, other mesh or parameters).
+        reason: String,
+        /// Set if saving the new cache failed (the model is still returned).
+        save_error: Option<String>,
+    },
+}
+
+/// Loads `cache_path` if it holds the model of `mesh` with `params`; otherwise computes the
+/// model and saves it there (atomically). A failure to save does not fail the call.
+pub fn load_or_build(
+    mesh: &FaceMesh,
+    obj_source: Option<String>,
+    params: &PipelineParams,
+    cache_path: &Path,
+    control: &Control,
+) -> Result<(FaceModel, CacheStatus), PipelineError> {
+    let reason = match cache::load_for(cache_path, mesh, params) {
+        Ok(model) => return Ok((model, CacheStatus::Loaded)),
+        Err(e) => e.to_string(),
+    };
+    let mut model = build_face_model(mesh, params, control)?;
+    model.obj_source = obj_source;
+    let save_error = cache::save(cache_path, &model).err().map(|e| e.to_string());
+    Ok((model, CacheStatus::Computed { reason, save_error }))
+}
+
+/// Where the default face's cache lives: `$XDG_CACHE_HOME/facebem/` or `~/.cache/facebem/`
+/// (the system temporary directory if neither is set).
+pub fn default_cache_dir() -> PathBuf {
+    if let Some(dir) = std::env::var_os("XDG_CACHE_HOME").filter(|d| !d.is_empty()) {
+        return PathBuf::from(dir).join("facebem");
+    }
+    if let Some(home) = std::env::var_os("HOME").filter(|d| !d.is_empty()) {
+        return PathBuf::from(home).join(".cache").join("facebem");
+    }
+    std::env::temp_dir().join("facebem")
+}
+
+/// The bundled default face mesh.
+pub fn default_face() -> Result<FaceMesh, OpenError> {
+    FaceMesh::from_obj_str(DEFAULT_FACE_OBJ).map_err(|source| OpenError::Face {
+        path: PathBuf::from(DEFAULT_FACE_NAME),
+        source,
+    })
+}
+
+/// The default face's model with default parameters: loaded from `cache_dir` (default:
+/// [`default_cache_dir`]) or computed and cached there.
+pub fn default_model(
+    cache_dir: Option<&Path>,
+    control: &Control,
+) -> Result<(FaceModel, CacheStatus), OpenError> {
+    let mesh = default_face()?;
+    let dir = cache_dir.map_or_else(default_cache_dir, Path::to_path_buf);
+    // Best effort: if the directory cannot be created, saving reports it in CacheStatus.
+    let _ = std::fs::create_dir_all(&dir);
+    let path = dir.join("mediapipe_canonical.rig");
+    Ok(load_or_build(
+        &mesh,
+        Some(DEFAULT_FACE_OBJ.to_string()),
+        &PipelineParams::default(),
+        &path,
+        control,
+    )?)
+}

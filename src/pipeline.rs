@@ -1,0 +1,291 @@
+//! The pipeline: face mesh → rig (face-prep) → BEM response per muscle (bem-core) → per-vertex
+//! muscle basis in the user's frame and vertex order.
+
+use std::time::Instant;
+
+use face_prep::{FaceMesh, FaceRig, RigParams};
+use glam::{DMat3, DVec3};
+use serde::{Deserialize, Serialize};
+
+use crate::control::{Control, Stage};
+use crate::large_face::{LargeFaceParams, Simplified, Transfer};
+use crate::{MuscleBasis, PoseError};
+
+/// Everything that determines a [`FaceModel`] besides the mesh. Part of the cache key.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct PipelineParams {
+    /// Rig building: shell offset and thickness, feature boxes, muscle placement.
+    pub rig: RigParams,
+    /// Poisson ratio ν of the face tissue (nearly incompressible: 0.45 by default). Only ν
+    /// matters: with every boundary displacement- or zero-traction-prescribed, displacements
+    /// do not depend on the shear modulus.
+    pub poisson: f64,
+    /// Simplification of faces too large for a dense solve.
+    pub large_face: LargeFaceParams,
+    /// Quadrature of the BEM's off-diagonal blocks (adaptive subdivision of near pairs).
+    pub quadrature: bem_core::QuadratureParams,
+    /// Muscles to use instead of the automatically placed ones (e.g. read from an edited
+    /// muscle file; their element indices refer to the shell [`prep_rig`] builds).
+    pub muscles: Option<Vec<face_prep::Muscle>>,
+}
+
+impl Default for PipelineParams {
+    fn default() -> Self {
+        PipelineParams {
+            rig: RigParams::default(),
+            poisson: 0.45,
+            large_face: LargeFaceParams::default(),
+            quadrature: bem_core::QuadratureParams::default(),
+            muscles: None,
+        }
+    }
+}
+
+/// Sizes and timings of one precompute.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct PrecomputeReport {
+    /// Front triangles of the input face.
+    pub input_triangles: usize,
+    /// Front triangles simulated (fewer than the input for a simplified large face).
+    pub simulated_triangles: usize,
+    /// Boundary elements of the closed shell.
+    pub shell_elements: usize,
+    /// Unknowns of the dense system (3 per element).
+    pub dofs: usize,
+    /// Seconds spent in prep (simplification, rig).
+    pub prep_seconds: f64,
+    /// Seconds spent in the BEM solve (assembly, factorisation, solves).
+    pub solve_seconds: f64,
+    /// Seconds spent mapping element results to the user's vertices.
+    pub transfer_seconds: f64,
+}
+
+/// A large face's simplified copy and the map that carries its fields to the full mesh.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct SimplifiedFace {
+    /// The simplified front mesh (its vertices are a subset of the full mesh's).
+    pub mesh: Simplified,
+    /// Closest-point barycentric transfer to every full-mesh vertex.
+    pub transfer: Transfer,
+}
+
+/// A computed face: input mesh, rig, muscle basis and the parameters it was computed with.
+///
+/// ```no_run
+/// use facebem::{build_face_model, Control, PipelineParams};
+/// let mesh = face_prep::load_face("assets/mediapipe_canonical_4loop.obj".as_ref()).unwrap();
+/// let model = build_face_model(&mesh, &PipelineParams::default(), &Control::new()).unwrap();
+/// let happy = facebem::presets::find("happy").unwrap();
+/// let posed = model.pose(&happy.sliders_for(&model.basis.muscle_ids)).unwrap();
+/// assert_eq!(posed.len(), mesh.vertices.len());
+/// ```
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct FaceModel {
+    /// The user's face mesh (input frame, welded).
+    pub mesh: FaceMesh,
+    /// The original OBJ text when the face came from an OBJ file: poses are written by
+    /// replacing only its `v` lines, keeping the user's vertex order, UVs and normals.
+    pub obj_source: Option<String>,
+    /// The rig (canonical frame) the BEM was solved on: of the simplified mesh for a large face.
+    pub rig: FaceRig,
+    /// For a large face: the simplified copy that was simulated.
+    pub simplified: Option<SimplifiedFace>,
+    /// Per-muscle displacement of every vertex of [`FaceModel::mesh`] at slider = 1, user frame.
+    pub basis: MuscleBasis,
+    /// `shell_element_response[k][e]`: displacement of shell element `e` of [`FaceModel::rig`]
+    /// (at its centroid, canonical frame) for muscle `k` at slider = 1. Skull elements are 0.
+    pub shell_element_response: Vec<Vec<DVec3>>,
+    /// `shell_vertex_response[k][v]`: the same per shell vertex (area-weighted average of the
+    /// adjacent elements), canonical frame; for drawing the whole deformed shell.
+    pub shell_vertex_response: Vec<Vec<DVec3>>,
+    /// Parameters the model was computed with.
+    pub params: PipelineParams,
+    /// Sizes and timings.
+    pub report: PrecomputeReport,
+}
+
+/// Errors of the pipeline.
+#[derive(Debug, thiserror::Error)]
+pub enum PipelineError {
+    /// Rig building failed (invalid face, features not found, ...).
+    #[error("rig: {0}")]
+    Prep(#[from] face_prep::PrepError),
+    /// The BEM solve failed.
+    #[error("BEM solve: {0}")]
+    Bem(#[from] bem_core::BemError),
+    /// The shell is not a valid closed surface for the BEM.
+    #[error("shell: {0}")]
+    Shell(#[from] bem_core::MeshError),
+    /// Simplifying the large face failed.
+    #[error("simplifying the large face: {0}")]
+    Simplify(#[from] crate::large_face::SimplifyError),
+    /// The Poisson ratio is not in [0, 0.5).
+    #[error("Poisson ratio {0} is outside [0, 0.5)")]
+    Poisson(f64),
+    /// The rig has no muscles.
+    #[error("the rig has no muscles")]
+    NoMuscles,
+    /// The caller cancelled the computation.
+    #[error("cancelled")]
+    Cancelled,
+}
+
+impl FaceModel {
+    /// Posed vertex positions (user frame, user vertex order) for one slider per muscle.
+    pub fn pose(&self, sliders: &[f64]) -> Result<Vec<DVec3>, PoseError> {
+        self.basis.pose(sliders)
+    }
+
+    /// Identifiers of the muscles, in slider order.
+    pub fn muscle_ids(&self) -> &[String] {
+        &self.basis.muscle_ids
+    }
+}
+
+/// The rig of a face as the pipeline simulates it, with the simplified copy for a large face.
+#[derive(Clone, Debug)]
+pub struct PreparedRig {
+    /// The front mesh that is simulated (the input mesh, or its simplified copy).
+    pub simulated: FaceMesh,
+    /// For a large face: the simplified copy, its vertices a subset of the input's.
+    pub simplified: Option<Simplified>,
+    /// The rig of [`PreparedRig::simulated`] (with `params.muscles` if given).
+    pub rig: FaceRig,
+}
+
+/// The prep step alone (fast, no BEM): simplification of a large face, rig, muscle override.
+pub fn prepare(mesh: &FaceMesh, params: &PipelineParams) -> Result<PreparedRig, PipelineError> {
+    let large = mesh.triangles.len() > params.large_face.max_triangles;
+    let (simulated, simplified) = if large {
+        let s = crate::large_face::simplify(
+            &mesh.vertices,
+            &mesh.triangles,
+            params.large_face.target_triangles,
+        )?;
+        let sim_mesh = FaceMesh::from_triangles(&s.vertices, &s.triangles)?;
+        (sim_mesh, Some(s))
+    } else {
+        (mesh.clone(), None)
+    };
+    let mut rig = FaceRig::build(&simulated, &params.rig)?;
+    if let Some(muscles) = &params.muscles {
+        rig = rig.with_muscles(muscles.clone())?;
+    }
+    Ok(PreparedRig {
+        simulated,
+        simplified,
+        rig,
+    })
+}
+
+/// The rig of `mesh` as [`build_face_model`] would simulate it (for `info`, muscle files,
+/// editing). No BEM solve.
+pub fn prep_rig(mesh: &FaceMesh, params: &PipelineParams) -> Result<FaceRig, PipelineError> {
+    Ok(prepare(mesh, params)?.rig)
+}
+
+/// Builds the rig and the muscle basis of `mesh`.
+///
+/// Large faces (more than `params.large_face.max_triangles` front triangles) are simulated on
+/// a border-locked simplified copy whose displacements are then carried to every vertex.
+/// Progress of every stage goes to `control`; cancelling it stops the work at the next check
+/// (the LU factorisation itself runs to completion once started).
+pub fn build_face_model(
+    mesh: &FaceMesh,
+    params: &PipelineParams,
+    control: &Control,
+) -> Result<FaceModel, PipelineError> {
+    if !(0.0..0.5).contains(&params.poisson) {
+        return Err(PipelineError::Poisson(params.poisson));
+    }
+    let t0 = Instant::now();
+    control.report(Stage::Prep, 0, 1);
+    let PreparedRig {
+        simulated,
+        simplified,
+        rig,
+    } = prepare(mesh, params)?;
+    if rig.muscles.is_empty() {
+        return Err(PipelineError::NoMuscles);
+    }
+    control.report(Stage::Prep, 1, 1);
+    check_cancel(control)?;
+    let prep_seconds = t0.elapsed().as_secs_f64();
+
+    let t1 = Instant::now();
+    let solved = crate::solve::solve_rig(&rig, params.poisson, params.quadrature, control)?;
+    let solve_seconds = t1.elapsed().as_secs_f64();
+    check_cancel(control)?;
+
+    let t2 = Instant::now();
+    control.report(Stage::Transfer, 0, 1);
+    // Canonical → input: displacements are vectors, so only the linear part applies.
+    let linear: DMat3 = rig.input_from_canonical().matrix3;
+    // Shell vertices 0..n are the simulated face's vertices, in order.
+    let n_front = simulated.vertices.len();
+    let sim_fields: Vec<Vec<DVec3>> = solved
+        .vertex
+        .iter()
+        .map(|field| field[..n_front].iter().map(|d| linear * *d).collect())
+        .collect();
+    let (displacements, simplified) = match simplified {
+        None => (sim_fields, None),
+        Some(s) => {
+            // Fields on the simplified copy's vertices (through its own welding map).
+            let on_copy: Vec<Vec<DVec3>> = sim_fields
+                .iter()
+                .map(|f| {
+                    simulated
+                        .input_to_vertex
+                        .iter()
+                        .map(|v| v.map_or(DVec3::ZERO, |v| f[v as usize]))
+                        .collect()
+                })
+                .collect();
+            let transfer = Transfer::build(&mesh.vertices, &s).ok_or(PipelineError::NoMuscles)?;
+            let fields = on_copy.iter().map(|f| transfer.apply(&s, f)).collect();
+            (fields, Some(SimplifiedFace { mesh: s, transfer }))
+        }
+    };
+    control.report(Stage::Transfer, 1, 1);
+    let basis = MuscleBasis {
+        muscle_ids: rig.muscles.iter().map(muscle_id).collect(),
+        neutral: mesh.vertices.clone(),
+        triangles: mesh.triangles.clone(),
+        displacements,
+    };
+    let report = PrecomputeReport {
+        input_triangles: mesh.triangles.len(),
+        simulated_triangles: simulated.triangles.len(),
+        shell_elements: rig.shell.triangles.len(),
+        dofs: 3 * rig.shell.triangles.len(),
+        prep_seconds,
+        solve_seconds,
+        transfer_seconds: t2.elapsed().as_secs_f64(),
+    };
+    Ok(FaceModel {
+        mesh: mesh.clone(),
+        obj_source: None,
+        rig,
+        simplified,
+        basis,
+        shell_element_response: solved.element,
+        shell_vertex_response: solved.vertex,
+        params: params.clone(),
+        report,
+    })
+}
+
+/// Identifier of a muscle: its standard id when it is one of the ten, else its name.
+fn muscle_id(m: &face_prep::Muscle) -> String {
+    m.kind
+        .map_or_else(|| m.name.clone(), |k| k.id().to_string())
+}
+
+fn check_cancel(control: &Control) -> Result<(), PipelineError> {
+    if control.is_cancelled() {
+        Err(PipelineError::Cancelled)
+    } else {
+        Ok(())
+    }
+}

@@ -1,0 +1,110 @@
+//! The BEM step: the rig's shell, skull and muscle patterns → one response per muscle.
+
+use std::sync::atomic::AtomicBool;
+
+use bem_core::{Material, QuadratureParams, ResponseBasis, SolveParams, SurfaceMesh};
+use face_prep::FaceRig;
+use glam::DVec3;
+
+use crate::control::{Control, Stage};
+use crate::pipeline::PipelineError;
+
+/// Responses of the shell to each muscle at slider = 1 (canonical frame).
+pub(crate) struct Solved {
+    /// `element[k][e]`: displacement of shell element `e` (at its centroid) for muscle `k`.
+    pub element: Vec<Vec<DVec3>>,
+    /// `vertex[k][v]`: area-weighted average of the adjacent elements, per shell vertex.
+    pub vertex: Vec<Vec<DVec3>>,
+}
+
+/// Solves the rig's BEM problem: skull elements fixed at zero, every muscle element
+/// displacement-prescribed (zero, except in its own muscle's right-hand side, where it follows
+/// the muscle's pattern), all other elements traction-free. One LU, one right-hand side per
+/// muscle.
+pub(crate) fn solve_rig(
+    rig: &FaceRig,
+    poisson: f64,
+    quadrature: QuadratureParams,
+    control: &Control,
+) -> Result<Solved, PipelineError> {
+    let mesh = SurfaceMesh::new(rig.shell.vertices.clone(), rig.shell.triangles.clone())?;
+    let material = Material::new(poisson, 1.0)?;
+    let n = mesh.element_count();
+    let mut prescribed = vec![false; n];
+    for &e in &rig.skull {
+        prescribed[e as usize] = true;
+    }
+    for m in &rig.muscles {
+        for e in m.elements() {
+            prescribed[e as usize] = true;
+        }
+    }
+    let groups: Vec<Vec<(usize, DVec3)>> = (0..rig.muscles.len())
+        .map(|k| {
+            rig.muscle_pattern(k)
+                .into_iter()
+                .map(|(e, d)| (e as usize, d))
+                .collect()
+        })
+        .collect();
+    let progress = |p: bem_core::Progress| {
+        let stage = match p.stage {
+            bem_core::Stage::Assembly => Stage::Assembly,
+            bem_core::Stage::Factorisation => Stage::Factorisation,
+            bem_core::Stage::Solve => Stage::Solves,
+        };
+        control.report(stage, p.done as u64, p.total as u64);
+    };
+    let flag: &AtomicBool = control.flag();
+    let bem_control = bem_core::Control {
+        cancel: Some(flag),
+        progress: Some(&progress),
+    };
+    let params = SolveParams {
+        quadrature,
+        ..SolveParams::default()
+    };
+    let basis = ResponseBasis::compute(
+        &mesh,
+        &material,
+        &prescribed,
+        &groups,
+        &params,
+        &bem_control,
+    )
+    .map_err(|e| match e {
+        bem_core::BemError::Cancelled => PipelineError::Cancelled,
+        e => PipelineError::Bem(e),
+    })?;
+    let element: Vec<Vec<DVec3>> = basis
+        .responses
+        .into_iter()
+        .map(|s| s.displacement)
+        .collect();
+    let vertex = element
+        .iter()
+        .map(|u| element_to_vertex(&rig.shell.vertices, &rig.shell.triangles, mesh.areas(), u))
+        .collect();
+    Ok(Solved { element, vertex })
+}
+
+/// Vertex values from element values: area-weighted average of the elements around each vertex.
+pub fn element_to_vertex(
+    vertices: &[DVec3],
+    triangles: &[[u32; 3]],
+    areas: &[f64],
+    values: &[DVec3],
+) -> Vec<DVec3> {
+    let mut sum = vec![DVec3::ZERO; vertices.len()];
+    let mut weight = vec![0.0; vertices.len()];
+    for ((t, &a), &u) in triangles.iter().zip(areas).zip(values) {
+        for &v in t {
+            sum[v as usize] += a * u;
+            weight[v as usize] += a;
+        }
+    }
+    sum.into_iter()
+        .zip(weight)
+        .map(|(s, w)| if w > 0.0 { s / w } else { DVec3::ZERO })
+        .collect()
+}
