@@ -1,5 +1,37 @@
-//! Face mesh preparation for facebem.
+//! Face mesh preparation for facebem: from one front-face triangle mesh (four holes: outer
+//! contour, two eyes, mouth) to a muscle rig for the BEM.
+//!
+//! Pipeline: [`load_face`] → [`FaceMesh`] (welded, validated, input frame) →
+//! [`FaceRig::build`]: canonical orientation ([`orient`]), loops and [`FeatureBoxes`],
+//! closed [`Shell`] (front / back / rim elements), standard muscles by ray projection
+//! ([`muscles`]) and skull. Muscle files: [`muscle_file`].
+//!
+//! ```
+//! use face_prep::{FaceRig, MuscleKind, RigParams, load_face};
+//! let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+//!     .join("../../assets/mediapipe_canonical_4loop.obj");
+//! let rig = FaceRig::build(&load_face(&path).unwrap(), &RigParams::default()).unwrap();
+//! let zyg = rig.muscle_index(MuscleKind::ZygomaticusMajorL).unwrap();
+//! assert!(!rig.muscles[zyg].front_chain.is_empty());
+//! ```
 
+pub mod bvh;
+mod error;
+mod face_mesh;
+pub mod features;
+pub mod muscle_file;
 mod muscle_kind;
+pub mod muscles;
+pub mod orient;
+mod rig;
+pub mod shell;
+pub mod topology;
 
+pub use error::{LoopSummary, MuscleFileError, PrepError};
+pub use face_mesh::{FaceMesh, load_face, load_face_mesh_named};
+pub use features::{Box2, FeatureBoxes};
 pub use muscle_kind::{MuscleKind, Side};
+pub use muscles::Muscle;
+pub use orient::FaceLoops;
+pub use rig::{FaceRig, RigParams};
+pub use shell::{ElementTag, Shell};

@@ -1,0 +1,288 @@
+//! Muscle files in the thesis format (§7.6): blocks of `[Name]`, `[Size]`, `[Data]` with one
+//! polygon (shell element) index per line.
+//!
+//! Each muscle is written as
+//!
+//! ```text
+//! [Name]
+//! Zygomaticus major L
+//! [Size]
+//! 3
+//! [Data]
+//! 120
+//! 121
+//! 133
+//! [BackSize]
+//! 2
+//! [BackData]
+//! 2950
+//! 2951
+//! ```
+//!
+//! `[Data]` is the front chain in order from start to end. The `[BackSize]`/`[BackData]` pair is
+//! this project's extension for the back chain; it is optional when reading, so thesis files
+//! (front chain only) load unchanged. Blank lines between blocks are ignored. The name of a
+//! standard muscle (display name such as "Frontalis L", or id such as `frontalis_l`) sets
+//! [`Muscle::kind`]; any other name gives a custom muscle.
+//!
+//! ```
+//! use face_prep::{Muscle, muscle_file};
+//! let m = vec![Muscle { name: "Frontalis L".into(), kind: None, front_chain: vec![4, 2], back_chain: vec![] }];
+//! let text = muscle_file::to_string(&m).unwrap();
+//! let back = muscle_file::read_str(&text, 10).unwrap();
+//! assert_eq!(back[0].front_chain, vec![4, 2]);
+//! assert_eq!(back[0].kind, Some(face_prep::MuscleKind::FrontalisL));
+//! ```
+
+use crate::error::MuscleFileError;
+use crate::muscle_kind::MuscleKind;
+use crate::muscles::Muscle;
+use std::collections::HashSet;
+use std::io::{Read, Write};
+use std::path::Path;
+
+/// The standard muscle a name denotes (display name or id, case-insensitive).
+pub fn kind_from_name(name: &str) -> Option<MuscleKind> {
+    let n = name.trim();
+    MuscleKind::ALL
+        .into_iter()
+        .find(|k| k.display_name().eq_ignore_ascii_case(n))
+        .or_else(|| MuscleKind::from_id(n))
+}
+
+struct Lines<'a> {
+    lines: Vec<(usize, &'a str)>,
+    pos: usize,
+}
+
+impl<'a> Lines<'a> {
+    fn new(text: &'a str) -> Lines<'a> {
+        Lines {
+            lines: text.lines().enumerate().map(|(i, l)| (i + 1, l.trim())).collect(),
+            pos: 0,
+        }
+    }
+    /// Next line, skipping blank ones between blocks.
+    fn next_nonblank(&mut self) -> Option<(usize, &'a str)> {
+        while let Some(&(n, l)) = self.lines.get(self.pos) {
+            self.pos += 1;
+            if !l.is_empty() {
+                return Some((n, l));
+            }
+        }
+        None
+    }
+    fn peek_nonblank(&self) -> Option<(usize, &'a str)> {
+        self.lines[self.pos.min(self.lines.len())..]
+            .iter()
+            .find(|(_, l)| !l.is_empty())
+            .copied()
+    }
+    fn last_line(&self) -> usize {
+        self.lines.last().map(|l| l.0).unwrap_or(0)
+    }
+}
+
+fn expect_header(lines: &mut Lines, header: &'static str, muscle: &str, missing: &'static str) -> Result<(), MuscleFileError> {
+    match lines.next_nonblank() {
+        Some((_, l)) if l.eq_ignore_ascii_case(header) => Ok(()),
+        Some((line, l)) => Err(MuscleFileError::Unexpected {
+            line,
+            text: l.to_owned(),
+            expected: missing,
+        }),
+        None => Err(MuscleFileError::Truncated {
+            line: lines.last_line(),
+            muscle: muscle.to_owned(),
+            missing,
+        }),
+    }
+}
+
+fn number(line: usize, text: &str) -> Result<u32, MuscleFileError> {
+    text.parse::<u32>().map_err(|_| MuscleFileError::BadNumber {
+        line,
+        text: text.to_owned(),
+    })
+}
+
+/// Reads a chain: `[<size_header>] n [<data_header>] n indices`.
+fn read_chain(
+    lines: &mut Lines,
+    muscle: &str,
+    data_header: &'static str,
+    element_count: usize,
+) -> Result<Vec<u32>, MuscleFileError> {
+    let declared = match lines.next_nonblank() {
+        Some((line, l)) => number(line, l)? as usize,
+        None => {
+            return Err(MuscleFileError::Truncated {
+                line: lines.last_line(),
+                muscle: muscle.to_owned(),
+                missing: "the size value",
+            });
+        }
+    };
+    expect_header(lines, data_header, muscle, data_header)?;
+    let mut chain = Vec::with_capacity(declared);
+    let mut seen = HashSet::new();
+    loop {
+        match lines.peek_nonblank() {
+            Some((line, l)) if !l.starts_with('[') => {
+                lines.next_nonblank();
+                let index = number(line, l)?;
+                if chain.len() >= declared {
+                    // Count the surplus for the message.
+                    let mut found = chain.len() + 1;
+                    while let Some((_, l)) = lines.peek_nonblank() {
+                        if l.starts_with('[') {
+                            break;
+                        }
+                        lines.next_nonblank();
+                        found += 1;
+                    }
+                    return Err(MuscleFileError::SizeMismatch {
+                        line,
+                        muscle: muscle.to_owned(),
+                        declared,
+                        found,
+                    });
+                }
+                if index as usize >= element_count {
+                    return Err(MuscleFileError::IndexOutOfRange {
+                        line,
+                        muscle: muscle.to_owned(),
+                        index,
+                        element_count,
+                    });
+                }
+                if !seen.insert(index) {
+                    return Err(MuscleFileError::DuplicateElement {
+                        line,
+                        muscle: muscle.to_owned(),
+                        index,
+                    });
+                }
+                chain.push(index);
+            }
+            other => {
+                if chain.len() != declared {
+                    return Err(MuscleFileError::SizeMismatch {
+                        line: other.map(|o| o.0).unwrap_or_else(|| lines.last_line()),
+                        muscle: muscle.to_owned(),
+                        declared,
+                        found: chain.len(),
+                    });
+                }
+                return Ok(chain);
+            }
+        }
+    }
+}
+
+/// Parses a muscle file; every index must be below `element_count` (the shell's element count).
+pub fn read_str(text: &str, element_count: usize) -> Result<Vec<Muscle>, MuscleFileError> {
+    let mut lines = Lines::new(text);
+    let mut muscles = Vec::new();
+    while let Some((line, l)) = lines.next_nonblank() {
+        if !l.eq_ignore_ascii_case("[Name]") {
+            return Err(MuscleFileError::Unexpected {
+                line,
+                text: l.to_owned(),
+                expected: "[Name]",
+            });
+        }
+        let name = match lines.next_nonblank() {
+            Some((line, n)) if n.starts_with('[') => {
+                return Err(MuscleFileError::Unexpected {
+                    line,
+                    text: n.to_owned(),
+                    expected: "a muscle name",
+                });
+            }
+            Some((_, n)) => n.to_owned(),
+            None => {
+                return Err(MuscleFileError::Truncated {
+                    line: lines.last_line(),
+                    muscle: String::new(),
+                    missing: "the name",
+                });
+            }
+        };
+        expect_header(&mut lines, "[Size]", &name, "[Size]")?;
+        let front_chain = read_chain(&mut lines, &name, "[Data]", element_count)?;
+        let back_chain = match lines.peek_nonblank() {
+            Some((_, l)) if l.eq_ignore_ascii_case("[BackSize]") => {
+                lines.next_nonblank();
+                read_chain(&mut lines, &name, "[BackData]", element_count)?
+            }
+            _ => Vec::new(),
+        };
+        muscles.push(Muscle {
+            kind: kind_from_name(&name),
+            name,
+            front_chain,
+            back_chain,
+        });
+    }
+    Ok(muscles)
+}
+
+/// Like [`read_str`], from a reader.
+pub fn read(mut reader: impl Read, element_count: usize) -> Result<Vec<Muscle>, MuscleFileError> {
+    let mut text = String::new();
+    reader.read_to_string(&mut text)?;
+    read_str(&text, element_count)
+}
+
+/// Formats muscles in the file format (back chain blocks only for muscles that have one).
+pub fn to_string(muscles: &[Muscle]) -> Result<String, MuscleFileError> {
+    use std::fmt::Write as _;
+    let mut s = String::new();
+    for m in muscles {
+        let name = m.name.trim();
+        if name.is_empty() || name.starts_with('[') || name.contains(['\n', '\r']) || name != m.name {
+            return Err(MuscleFileError::BadName(m.name.clone()));
+        }
+        let _ = writeln!(s, "[Name]\n{name}\n[Size]\n{}\n[Data]", m.front_chain.len());
+        for e in &m.front_chain {
+            let _ = writeln!(s, "{e}");
+        }
+        if !m.back_chain.is_empty() {
+            let _ = writeln!(s, "[BackSize]\n{}\n[BackData]", m.back_chain.len());
+            for e in &m.back_chain {
+                let _ = writeln!(s, "{e}");
+            }
+        }
+    }
+    Ok(s)
+}
+
+/// Writes muscles to a writer.
+pub fn write(mut writer: impl Write, muscles: &[Muscle]) -> Result<(), MuscleFileError> {
+    writer.write_all(to_string(muscles)?.as_bytes())?;
+    Ok(())
+}
+
+/// Writes a muscle file atomically (temporary file in the same directory, then rename).
+pub fn save(path: &Path, muscles: &[Muscle]) -> Result<(), MuscleFileError> {
+    let text = to_string(muscles)?;
+    let dir = path.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    let file_name = path.file_name().and_then(|n| n.to_str()).unwrap_or("muscles");
+    let tmp = dir.join(format!(".{file_name}.{}.tmp", std::process::id()));
+    let result = (|| {
+        let mut f = std::fs::File::create(&tmp)?;
+        f.write_all(text.as_bytes())?;
+        f.sync_all()?;
+        std::fs::rename(&tmp, path)
+    })();
+    if result.is_err() {
+        let _ = std::fs::remove_file(&tmp);
+    }
+    Ok(result?)
+}
+
+/// Reads a muscle file from disk.
+pub fn load(path: &Path, element_count: usize) -> Result<Vec<Muscle>, MuscleFileError> {
+    read(std::fs::File::open(path)?, element_count)
+}

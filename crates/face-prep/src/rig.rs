@@ -1,0 +1,245 @@
+//! The face rig: everything the BEM needs, built from one face mesh.
+
+use crate::error::PrepError;
+use crate::face_mesh::FaceMesh;
+use crate::features::FeatureBoxes;
+use crate::muscle_kind::MuscleKind;
+use crate::muscles::{Muscle, muscle_pattern, place_standard_muscles, skull_elements};
+use crate::orient::{FaceLoops, canonical_frame};
+use crate::shell::{ElementTag, Shell, ShellDims};
+use crate::topology;
+use glam::{DAffine3, DVec3};
+use serde::{Deserialize, Serialize};
+use std::collections::HashSet;
+
+/// Parameters of rig building. Lengths are fractions of the face size, defined as the larger
+/// side of FBFace (the outer contour's bounding box in the canonical front plane), so defaults
+/// work for faces in cm, m or arbitrary model units.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct RigParams {
+    /// Back-face offset along the inward vertex normal, fraction of face size. Default 0.015
+    /// (3 mm on a 20 cm face).
+    pub offset: f64,
+    /// How far the outer contour's copy is moved along the inward normal to make the rim,
+    /// fraction of face size. Default 0.015.
+    pub thickness: f64,
+    /// A back vertex moves at most this fraction of the free distance along its inward normal
+    /// to the front surface (keeps the back face inside nostrils and rolled lips). In (0, 1];
+    /// default 0.45.
+    pub offset_clamp: f64,
+    /// Spacing of the rays cast along a muscle-definer, as a fraction of the median front edge
+    /// length. Default 0.25.
+    pub ray_spacing: f64,
+}
+
+impl Default for RigParams {
+    fn default() -> Self {
+        RigParams {
+            offset: 0.015,
+            thickness: 0.015,
+            offset_clamp: 0.45,
+            ray_spacing: 0.25,
+        }
+    }
+}
+
+impl RigParams {
+    fn check(&self) -> Result<(), PrepError> {
+        let positive = |name, v: f64| {
+            if v.is_finite() && v > 0.0 && v < 1.0 {
+                Ok(())
+            } else {
+                Err(PrepError::InvalidParam {
+                    name,
+                    value: v,
+                    reason: "must be in (0, 1)",
+                })
+            }
+        };
+        positive("offset", self.offset)?;
+        positive("thickness", self.thickness)?;
+        positive("ray_spacing", self.ray_spacing)?;
+        if !(self.offset_clamp > 0.0 && self.offset_clamp <= 1.0) {
+            return Err(PrepError::InvalidParam {
+                name: "offset_clamp",
+                value: self.offset_clamp,
+                reason: "must be in (0, 1]",
+            });
+        }
+        Ok(())
+    }
+}
+
+/// Everything the BEM needs, in the CANONICAL frame (face in x-y, looking toward +z, eyes above
+/// the mouth, the face's left eye at +x).
+///
+/// ```
+/// use face_prep::{FaceRig, RigParams, load_face};
+/// let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+///     .join("../../assets/mediapipe_canonical_4loop.obj");
+/// let face = load_face(&path).unwrap();
+/// let rig = FaceRig::build(&face, &RigParams::default()).unwrap();
+/// assert_eq!(rig.shell.euler_characteristic(), -4);
+/// assert_eq!(rig.muscles.len(), 10);
+/// let pattern = rig.muscle_pattern(0); // frontalis L at slider = +1
+/// assert_eq!(pattern.len(), rig.muscles[0].front_chain.len());
+/// ```
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct FaceRig {
+    /// Rigid transform from the user's input frame to the canonical frame.
+    pub canonical_from_input: DAffine3,
+    /// Parameters the rig was built with.
+    pub params: RigParams,
+    /// Face size (larger side of FBFace), the unit of the relative parameters.
+    pub face_size: f64,
+    /// Number of face vertices (= first shell vertices).
+    pub face_vertex_count: usize,
+    /// Number of face triangles (= front elements, the first shell elements).
+    pub face_triangle_count: usize,
+    /// The four classified boundary loops (face vertex indices).
+    pub loops: FaceLoops,
+    /// Feature boxes (possibly user-adjusted).
+    pub boxes: FeatureBoxes,
+    /// The closed shell.
+    pub shell: Shell,
+    /// The muscles; the standard ten come in [`MuscleKind::ALL`] order.
+    pub muscles: Vec<Muscle>,
+    /// Fixed skull elements, sorted, disjoint from every muscle chain.
+    pub skull: Vec<u32>,
+}
+
+impl FaceRig {
+    /// Builds the rig with automatically derived feature boxes.
+    pub fn build(face: &FaceMesh, params: &RigParams) -> Result<FaceRig, PrepError> {
+        FaceRig::build_impl(face, params, None)
+    }
+
+    /// Builds the rig with the given (user-adjusted) feature boxes, canonical frame.
+    pub fn build_with_boxes(face: &FaceMesh, params: &RigParams, boxes: FeatureBoxes) -> Result<FaceRig, PrepError> {
+        FaceRig::build_impl(face, params, Some(boxes))
+    }
+
+    fn build_impl(face: &FaceMesh, params: &RigParams, boxes: Option<FeatureBoxes>) -> Result<FaceRig, PrepError> {
+        params.check()?;
+        let loops = topology::validate(&face.vertices, &face.triangles)?;
+        topology::check_four_loops(&face.vertices, &loops)?;
+        let (canonical_from_input, loops) = canonical_frame(&face.vertices, &face.triangles, &loops)?;
+        let verts: Vec<DVec3> = face.vertices.iter().map(|&p| canonical_from_input.transform_point3(p)).collect();
+        let auto = FeatureBoxes::from_loops(&verts, &loops)?;
+        let face_size = auto.face.width().max(auto.face.height());
+        let boxes = match boxes {
+            Some(b) => {
+                b.check()?;
+                b
+            }
+            None => auto,
+        };
+        let shell = Shell::build(
+            &verts,
+            &face.triangles,
+            &loops,
+            ShellDims {
+                offset: params.offset * face_size,
+                thickness: params.thickness * face_size,
+                clamp_fraction: params.offset_clamp,
+            },
+        );
+        let mut rig = FaceRig {
+            canonical_from_input,
+            params: *params,
+            face_size,
+            face_vertex_count: face.vertices.len(),
+            face_triangle_count: face.triangles.len(),
+            loops,
+            boxes,
+            shell,
+            muscles: Vec::new(),
+            skull: Vec::new(),
+        };
+        rig.place_muscles();
+        Ok(rig)
+    }
+
+    fn median_front_edge(&self) -> f64 {
+        let mut lengths: Vec<f64> = self.shell.triangles[..self.face_triangle_count]
+            .iter()
+            .flat_map(|t| (0..3).map(move |k| (t[k], t[(k + 1) % 3])))
+            .map(|(a, b)| self.shell.vertices[a as usize].distance(self.shell.vertices[b as usize]))
+            .collect();
+        lengths.sort_by(f64::total_cmp);
+        lengths.get(lengths.len() / 2).copied().unwrap_or(self.face_size * 0.01)
+    }
+
+    fn place_muscles(&mut self) {
+        self.skull = skull_elements(&self.shell, &self.boxes);
+        let spacing = self.params.ray_spacing * self.median_front_edge();
+        self.muscles = place_standard_muscles(&self.shell, &self.boxes, &self.skull, spacing);
+    }
+
+    /// The same rig with new feature boxes: the shell is kept; skull and the ten standard
+    /// muscles are recomputed from the boxes (custom muscles are dropped).
+    pub fn rebuild_with_boxes(&self, boxes: FeatureBoxes) -> Result<FaceRig, PrepError> {
+        boxes.check()?;
+        let mut rig = self.clone();
+        rig.boxes = boxes;
+        rig.place_muscles();
+        Ok(rig)
+    }
+
+    /// Replaces the muscles (e.g. from an edited muscle file). Every element must exist, chains
+    /// must not repeat an element, front chains must hold Front elements, back chains Back
+    /// elements, and no muscle may use a skull element.
+    pub fn with_muscles(mut self, muscles: Vec<Muscle>) -> Result<FaceRig, PrepError> {
+        let skull: HashSet<u32> = self.skull.iter().copied().collect();
+        for m in &muscles {
+            for (chain, want) in [(&m.front_chain, ElementTag::Front), (&m.back_chain, ElementTag::Back)] {
+                let mut seen = HashSet::new();
+                for &e in chain {
+                    let bad = |reason| PrepError::InvalidMuscle {
+                        muscle: m.name.clone(),
+                        element: e,
+                        reason,
+                    };
+                    match self.shell.tags.get(e as usize) {
+                        None => return Err(bad("does not exist")),
+                        Some(t) if *t != want => {
+                            return Err(bad(if want == ElementTag::Front {
+                                "is not a front element but is in the front chain"
+                            } else {
+                                "is not a back element but is in the back chain"
+                            }));
+                        }
+                        _ => {}
+                    }
+                    if skull.contains(&e) {
+                        return Err(bad("is a skull element"));
+                    }
+                    if !seen.insert(e) {
+                        return Err(bad("appears twice in one chain"));
+                    }
+                }
+            }
+        }
+        self.muscles = muscles;
+        Ok(self)
+    }
+
+    /// Inverse of [`FaceRig::canonical_from_input`]: canonical frame → user's input frame.
+    pub fn input_from_canonical(&self) -> DAffine3 {
+        self.canonical_from_input.inverse()
+    }
+
+    /// Index of a standard muscle in [`FaceRig::muscles`], if present.
+    pub fn muscle_index(&self, kind: MuscleKind) -> Option<usize> {
+        self.muscles.iter().position(|m| m.kind == Some(kind))
+    }
+
+    /// Prescribed per-element displacement of muscle `muscle_index` at slider = +1 (canonical
+    /// frame; see [`crate::muscles::muscle_pattern`]). Empty if the index is out of range.
+    pub fn muscle_pattern(&self, muscle_index: usize) -> Vec<(u32, DVec3)> {
+        self.muscles
+            .get(muscle_index)
+            .map(|m| muscle_pattern(&self.shell, m))
+            .unwrap_or_default()
+    }
+}

@@ -1,0 +1,271 @@
+//! The closed elastic shell (thesis ch. 5): front face, offset back face, rim strip.
+
+use crate::bvh::{TriangleBvh, segment_crosses_triangle};
+use crate::orient::FaceLoops;
+use glam::DVec3;
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+use std::collections::HashMap;
+
+/// Which part of the shell an element belongs to.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum ElementTag {
+    /// A triangle of the user's face (normal toward +z).
+    Front,
+    /// A triangle of the offset back face (normal toward −z).
+    Back,
+    /// A triangle of the strip joining the outer contour to its thickened copy.
+    Rim,
+}
+
+/// The closed, edge-manifold, outward-oriented shell, canonical frame.
+///
+/// Contract: vertices `0..n_face_vertices` are exactly the face's vertices (canonical frame, same
+/// order) and triangles `0..n_face_triangles` are the face's triangles (front element `i` = face
+/// triangle `i`). Back and rim elements follow. Eye and mouth contours are knife edges shared
+/// by front and back; the outer contour is joined to its copy by the rim, so the surface has
+/// genus 3 (V − E + F = −4).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Shell {
+    /// Vertex positions.
+    pub vertices: Vec<DVec3>,
+    /// Triangles, counter-clockwise seen from outside.
+    pub triangles: Vec<[u32; 3]>,
+    /// Tag of every element.
+    pub tags: Vec<ElementTag>,
+    /// For every element, the face triangle it derives from: itself for front elements, the
+    /// mirrored front triangle for back elements, the front triangle owning the contour edge for
+    /// rim elements.
+    pub source_triangle: Vec<u32>,
+}
+
+/// Absolute shell dimensions, in the face's units.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ShellDims {
+    /// Back-face offset along the inward vertex normal.
+    pub offset: f64,
+    /// How far the outer contour's copy is moved along the inward normal.
+    pub thickness: f64,
+    /// Each back vertex moves at most this fraction of the distance, along its inward normal,
+    /// to the front surface (keeps the back face inside deep concavities such as nostrils).
+    pub clamp_fraction: f64,
+}
+
+/// Area-weighted vertex normals of a triangle mesh (+z where undefined).
+pub fn vertex_normals(vertices: &[DVec3], triangles: &[[u32; 3]]) -> Vec<DVec3> {
+    let mut n = vec![DVec3::ZERO; vertices.len()];
+    for t in triangles {
+        let p = t.map(|i| vertices[i as usize]);
+        let c = (p[1] - p[0]).cross(p[2] - p[0]);
+        for &i in t {
+            n[i as usize] += c;
+        }
+    }
+    n.into_iter().map(|v| v.try_normalize().unwrap_or(DVec3::Z)).collect()
+}
+
+impl Shell {
+    /// Builds the shell from the face (canonical frame) and its classified loops.
+    pub fn build(vertices: &[DVec3], triangles: &[[u32; 3]], loops: &FaceLoops, dims: ShellDims) -> Shell {
+        let n = vertices.len();
+        let normals = vertex_normals(vertices, triangles);
+        let front_tris: Vec<[DVec3; 3]> = triangles.iter().map(|t| t.map(|i| vertices[i as usize])).collect();
+        let front_bvh = TriangleBvh::new(&front_tris);
+        // Inward move of a point, clamped by the distance to the front surface along −normal.
+        let moved = |p: DVec3, normal: DVec3, distance: f64| -> DVec3 {
+            let dir = -normal;
+            let min_t = 1e-6 * distance;
+            let free = front_bvh
+                .ray_hits(p, dir)
+                .into_iter()
+                .find(|h| h.t > min_t)
+                .map(|h| h.t)
+                .unwrap_or(f64::INFINITY);
+            p + dir * distance.min(dims.clamp_fraction * free)
+        };
+        let mut kind = vec![0u8; n]; // 0 interior, 1 inner contour, 2 outer contour
+        for l in [&loops.eye_l, &loops.eye_r, &loops.mouth] {
+            for &v in l.iter() {
+                kind[v as usize] = 1;
+            }
+        }
+        for &v in &loops.face {
+            kind[v as usize] = 2;
+        }
+        let mut out_v = vertices.to_vec();
+        let mut back_of = vec![u32::MAX; n];
+        let new_back: Vec<(usize, DVec3)> = (0..n)
+            .into_par_iter()
+            .filter(|&v| kind[v] != 1)
+            .map(|v| {
+                let d = if kind[v] == 2 { dims.thickness } else { dims.offset };
+                (v, moved(vertices[v], normals[v], d))
+            })
+            .collect();
+        for (v, p) in new_back {
+            back_of[v] = out_v.len() as u32;
+            out_v.push(p);
+        }
+        for v in 0..n {
+            if kind[v] == 1 {
+                back_of[v] = v as u32;
+            }
+        }
+        // Chords: interior edges joining two inner-contour vertices. On the back they would
+        // coincide with the front edge, so the back side splits them at an offset mid-point.
+        let mut boundary_edges = std::collections::HashSet::new();
+        for l in [&loops.eye_l, &loops.eye_r, &loops.mouth] {
+            for i in 0..l.len() {
+                let (a, b) = (l[i], l[(i + 1) % l.len()]);
+                boundary_edges.insert((a.min(b), a.max(b)));
+            }
+        }
+        let mut chord_mid: HashMap<(u32, u32), u32> = HashMap::new();
+        let mid_start = out_v.len() as u32;
+        for t in triangles {
+            for k in 0..3 {
+                let (a, b) = (t[k], t[(k + 1) % 3]);
+                let key = (a.min(b), a.max(b));
+                if kind[a as usize] == 1 && kind[b as usize] == 1 && !boundary_edges.contains(&key) {
+                    chord_mid.entry(key).or_insert_with(|| {
+                        let m = 0.5 * (vertices[a as usize] + vertices[b as usize]);
+                        let nm = (normals[a as usize] + normals[b as usize]).try_normalize().unwrap_or(DVec3::Z);
+                        out_v.push(moved(m, nm, dims.offset));
+                        (out_v.len() - 1) as u32
+                    });
+                }
+            }
+        }
+        let mut out_t = triangles.to_vec();
+        let mut tags = vec![ElementTag::Front; triangles.len()];
+        let mut source: Vec<u32> = (0..triangles.len() as u32).collect();
+        for (ti, t) in triangles.iter().enumerate() {
+            // Back polygon, reversed orientation: t0, t2, t1 with chord mid-points inserted.
+            let rev = [t[0], t[2], t[1]];
+            let mut poly = Vec::with_capacity(6);
+            for k in 0..3 {
+                let (a, b) = (rev[k], rev[(k + 1) % 3]);
+                poly.push(back_of[a as usize]);
+                if let Some(&m) = chord_mid.get(&(a.min(b), a.max(b))) {
+                    poly.push(m);
+                }
+            }
+            // Fan from a chord mid-point if any (never degenerate), else the plain triangle.
+            let start = (0..poly.len()).find(|&i| poly[i] >= mid_start).unwrap_or(0);
+            poly.rotate_left(start);
+            for i in 1..poly.len() - 1 {
+                out_t.push([poly[0], poly[i], poly[i + 1]]);
+                tags.push(ElementTag::Back);
+                source.push(ti as u32);
+            }
+        }
+        // Rim: the front's outer boundary half-edge a→b is completed by (b, a, a'), (b, a', b').
+        let mut owner: HashMap<(u32, u32), u32> = HashMap::new();
+        for (ti, t) in triangles.iter().enumerate() {
+            for k in 0..3 {
+                owner.insert((t[k], t[(k + 1) % 3]), ti as u32);
+            }
+        }
+        let f = &loops.face;
+        for i in 0..f.len() {
+            let (a, b) = (f[i], f[(i + 1) % f.len()]);
+            let (a2, b2) = (back_of[a as usize], back_of[b as usize]);
+            let src = owner.get(&(a, b)).copied().unwrap_or(0);
+            out_t.push([b, a, a2]);
+            out_t.push([b, a2, b2]);
+            tags.extend([ElementTag::Rim, ElementTag::Rim]);
+            source.extend([src, src]);
+        }
+        Shell {
+            vertices: out_v,
+            triangles: out_t,
+            tags,
+            source_triangle: source,
+        }
+    }
+
+    /// Number of elements (triangles).
+    pub fn element_count(&self) -> usize {
+        self.triangles.len()
+    }
+
+    /// Corner positions of element `e`.
+    pub fn corners(&self, e: usize) -> [DVec3; 3] {
+        self.triangles[e].map(|i| self.vertices[i as usize])
+    }
+
+    /// Centroid (collocation point) of element `e`.
+    pub fn centroid(&self, e: usize) -> DVec3 {
+        let p = self.corners(e);
+        (p[0] + p[1] + p[2]) / 3.0
+    }
+
+    /// Euler characteristic V − E + F (−4 for a correct face shell).
+    pub fn euler_characteristic(&self) -> i64 {
+        let mut edges = std::collections::HashSet::new();
+        for t in &self.triangles {
+            for k in 0..3 {
+                let (a, b) = (t[k], t[(k + 1) % 3]);
+                edges.insert((a.min(b), a.max(b)));
+            }
+        }
+        self.vertices.len() as i64 - edges.len() as i64 + self.triangles.len() as i64
+    }
+
+    /// Signed enclosed volume (positive when the shell is outward oriented).
+    pub fn signed_volume(&self) -> f64 {
+        self.triangles
+            .iter()
+            .map(|t| {
+                let p = t.map(|i| self.vertices[i as usize]);
+                p[0].dot(p[1].cross(p[2])) / 6.0
+            })
+            .sum()
+    }
+
+    /// Pairs of elements that intersect each other (BVH-accelerated). Pairs sharing an edge
+    /// are not tested; pairs sharing one vertex are tested with their edges opposite to it.
+    /// Empty for a valid shell.
+    pub fn self_intersections(&self) -> Vec<[u32; 2]> {
+        let tris: Vec<[DVec3; 3]> = (0..self.triangles.len()).map(|e| self.corners(e)).collect();
+        let bvh = TriangleBvh::new(&tris);
+        let mut pairs: Vec<[u32; 2]> = (0..tris.len())
+            .into_par_iter()
+            .flat_map_iter(|i| {
+                let a = &tris[i];
+                let lo = a[0].min(a[1]).min(a[2]);
+                let hi = a[0].max(a[1]).max(a[2]);
+                let ta = self.triangles[i];
+                let mut found = Vec::new();
+                for j in bvh.overlapping(lo, hi) {
+                    let j = j as usize;
+                    if j <= i {
+                        continue;
+                    }
+                    let tb = self.triangles[j];
+                    let shared: Vec<u32> = ta.iter().copied().filter(|v| tb.contains(v)).collect();
+                    let b = &tris[j];
+                    let hit = match shared.len() {
+                        0 => (0..3).any(|k| {
+                            segment_crosses_triangle(a[k], a[(k + 1) % 3], b)
+                                || segment_crosses_triangle(b[k], b[(k + 1) % 3], a)
+                        }),
+                        1 => {
+                            let ka = ta.iter().position(|&v| v == shared[0]).unwrap_or(0);
+                            let kb = tb.iter().position(|&v| v == shared[0]).unwrap_or(0);
+                            segment_crosses_triangle(a[(ka + 1) % 3], a[(ka + 2) % 3], b)
+                                || segment_crosses_triangle(b[(kb + 1) % 3], b[(kb + 2) % 3], a)
+                        }
+                        _ => false,
+                    };
+                    if hit {
+                        found.push([i as u32, j as u32]);
+                    }
+                }
+                found
+            })
+            .collect();
+        pairs.sort_unstable();
+        pairs
+    }
+}
