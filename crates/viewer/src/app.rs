@@ -1,21 +1,27 @@
-//! The eframe application: panels, sliders, presets, viewport interaction, background loading.
+//! The eframe application: panels, sliders, presets, viewport interaction, background opening,
+//! rig computation (cached) and exports.
 
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use eframe::egui;
+use face_prep::FaceMesh;
+use facebem::Control;
 use facebem::MuscleBasis;
+use facebem::open::{CacheStatus, Opened};
+use facebem::{FaceModel, PipelineParams};
 use glam::{DVec3, Vec2};
 
 use crate::camera::OrbitCamera;
 use crate::job::Job;
+use crate::overlay::{OverlayOptions, RigGeometry, muscles_of_element, overlay_lines};
 use crate::picking::{TriangleHit, pick_triangle};
 use crate::posed_mesh::{MeshVertex, PosedMesh, bounding_sphere, edge_indices};
 use crate::renderer::{LineVertex, SceneFrame, SceneUniforms, ViewportCallback};
-use crate::source::{self, OpenError};
+use crate::source;
 
-/// Viewport clear colour (sRGB-ish display values, written as is).
+/// Viewport clear colour (display values, written as is).
 pub const BACKGROUND: [f32; 3] = [0.11, 0.12, 0.14];
 const SKIN: [f32; 4] = [0.86, 0.72, 0.62, 1.0];
 const SELECTION: [f32; 4] = [1.0, 0.85, 0.1, 1.0];
@@ -23,25 +29,42 @@ const SELECTION: [f32; 4] = [1.0, 0.85, 0.1, 1.0];
 /// Start-up options (from the command line).
 #[derive(Clone, Debug, Default)]
 pub struct ViewerOptions {
-    /// Face file to open; `None` opens the bundled default face.
+    /// Face or rig file to open; `None` opens the bundled default face.
     pub open: Option<PathBuf>,
+    /// Rig cache folder; `None` = [`facebem::open::default_cache_dir`]
+    /// (`$XDG_CACHE_HOME/facebem` or `~/.cache/facebem`).
+    pub cache_dir: Option<PathBuf>,
     /// Written (atomically) once a face has been drawn, for scripts and the Xvfb test.
     pub ready_file: Option<PathBuf>,
     /// Close the window this long after the ready point.
     pub exit_after_ready: Option<Duration>,
-    /// Start with no face and no loading job (tests that install a basis themselves).
+    /// Preset applied as soon as the rig is available (e.g. for screenshots).
+    pub preset: Option<String>,
+    /// Start with no face and no job (tests that install a basis themselves).
     pub start_empty: bool,
 }
 
-/// A face file read by a background job.
-#[derive(Debug)]
-pub struct LoadedFace {
-    /// Name shown in the title area (file name).
-    pub name: String,
-    /// The file it came from.
-    pub path: PathBuf,
-    /// Its basis (no muscles until the rig is solved).
-    pub basis: MuscleBasis,
+/// What an export button writes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ExportKind {
+    /// `<name>_pose.obj`: the current pose (in the user's own OBJ layout when the face came
+    /// from an OBJ file).
+    ObjPose,
+    /// `<name>.glb`: glTF 2.0 with one morph target per muscle and preset.
+    Gltf,
+    /// `<name>.muscles`: the rig's muscle file (thesis format).
+    MuscleFile,
+}
+
+impl ExportKind {
+    /// Button label.
+    pub fn label(self) -> &'static str {
+        match self {
+            ExportKind::ObjPose => "Export OBJ pose",
+            ExportKind::Gltf => "Export glTF",
+            ExportKind::MuscleFile => "Save muscle file",
+        }
+    }
 }
 
 /// The face currently displayed.
@@ -52,6 +75,11 @@ struct Face {
     topology_id: u64,
     triangles: Arc<Vec<u32>>,
     edges: Arc<Vec<u32>>,
+    /// The mesh and its OBJ text, for (re)building the rig.
+    source: Option<Arc<(FaceMesh, Option<String>)>>,
+    /// The solved model, once available.
+    model: Option<Arc<FaceModel>>,
+    rig_geometry: Option<Arc<RigGeometry>>,
 }
 
 /// A status line shown under the toolbar.
@@ -63,23 +91,21 @@ pub struct StatusMessage {
     pub is_error: bool,
 }
 
-/// What an export button writes.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum ExportKind {
-    /// `<name>_pose.obj`: the current pose as a plain OBJ.
-    ObjPose,
-    /// `<name>.glb`: glTF 2.0 with one morph target per muscle and preset.
-    Gltf,
+/// What the user picked in the viewport.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Selection {
+    /// The hit on the displayed mesh (triangle of the user's mesh).
+    pub hit: TriangleHit,
+    /// The rig's shell element under the click (front elements; `None` without a rig).
+    pub element: Option<u32>,
+    /// Muscles containing that element.
+    pub muscles: Vec<String>,
 }
 
-impl ExportKind {
-    /// Button label.
-    pub fn label(self) -> &'static str {
-        match self {
-            ExportKind::ObjPose => "Export OBJ pose",
-            ExportKind::Gltf => "Export glTF",
-        }
-    }
+struct RigJob {
+    job: Job<(FaceModel, CacheStatus)>,
+    control: Control,
+    topology_id: u64,
 }
 
 /// The viewer application state.
@@ -96,19 +122,23 @@ pub struct ViewerApp {
     camera: OrbitCamera,
     shaded: bool,
     wireframe: bool,
+    overlays: OverlayOptions,
+    params: PipelineParams,
     open_path: String,
     message: Option<StatusMessage>,
-    loading: Option<Job<LoadedFace>>,
+    loading: Option<Job<(String, Opened)>>,
+    rigging: Option<RigJob>,
     exporting: Option<Job<String>>,
     export_dir: String,
-    selected: Option<TriangleHit>,
+    selection: Option<Selection>,
+    viewport_rect: Option<egui::Rect>,
     has_wgpu: bool,
     frames_with_face: u32,
     ready_at: Option<Instant>,
 }
 
 impl ViewerApp {
-    /// Creates the app; installs the wgpu renderer if eframe runs on wgpu and starts loading
+    /// Creates the app; installs the wgpu renderer if eframe runs on wgpu and starts opening
     /// `options.open` (or the bundled default face) in the background.
     pub fn new(cc: &eframe::CreationContext<'_>, options: ViewerOptions) -> Self {
         let has_wgpu = match &cc.wgpu_render_state {
@@ -118,12 +148,7 @@ impl ViewerApp {
             }
             None => false,
         };
-        let start = (!options.start_empty).then(|| {
-            options
-                .open
-                .clone()
-                .unwrap_or_else(source::default_face_path)
-        });
+        let start = (!options.start_empty).then(|| options.open.clone());
         let mut app = ViewerApp {
             options,
             face: None,
@@ -137,68 +162,134 @@ impl ViewerApp {
             camera: OrbitCamera::framing(glam::Vec3::ZERO, 1.0),
             shaded: true,
             wireframe: false,
+            overlays: OverlayOptions::default(),
+            params: PipelineParams::default(),
             open_path: String::new(),
             message: None,
             loading: None,
+            rigging: None,
             exporting: None,
             export_dir: std::env::current_dir()
                 .map(|d| d.display().to_string())
                 .unwrap_or_else(|_| ".".to_owned()),
-            selected: None,
+            selection: None,
+            viewport_rect: None,
             has_wgpu,
             frames_with_face: 0,
             ready_at: None,
         };
-        if let Some(path) = start {
-            app.open(&cc.egui_ctx, path);
+        match start {
+            Some(Some(path)) => {
+                app.open_path = path.display().to_string();
+                app.open(&cc.egui_ctx, path);
+            }
+            Some(None) => app.open_default_face(&cc.egui_ctx),
+            None => {}
         }
         app
     }
 
-    /// Starts opening `path` in the background; the current face stays usable meanwhile.
+    /// Starts opening `path` (face or saved rig) in the background; the current face stays
+    /// usable meanwhile. A face without rig is shown at once and its rig computed (or loaded
+    /// from the cache) by a second job.
     pub fn open(&mut self, ctx: &egui::Context, path: PathBuf) {
-        self.open_path = path.display().to_string();
         let job = Job::spawn(
             format!("Opening {}", file_name(&path)),
             Some(ctx.clone()),
             move |ctl| {
-                ctl.report("reading the mesh", 0.0);
-                let basis = source::load_neutral(&path).map_err(|e: OpenError| e.to_string())?;
-                ctl.report("done", 1.0);
-                Ok(LoadedFace {
-                    name: file_name(&path),
-                    path,
-                    basis,
-                })
+                ctl.report("reading", 0.0);
+                let opened = facebem::open::open(&path).map_err(|e| e.to_string())?;
+                ctl.report("read", 1.0);
+                Ok((file_name(&path), opened))
             },
         );
         self.loading = Some(job);
     }
 
-    /// Displays `basis` (sliders reset to 0, camera framed on it).
+    /// Starts opening the bundled default face (compiled into the program).
+    pub fn open_default_face(&mut self, ctx: &egui::Context) {
+        let job = Job::spawn("Opening the default face", Some(ctx.clone()), move |_| {
+            let mesh = facebem::open::default_face().map_err(|e| e.to_string())?;
+            let obj_source = Some(facebem::open::DEFAULT_FACE_OBJ.to_owned());
+            let name = facebem::open::DEFAULT_FACE_NAME.to_owned();
+            Ok((name, Opened::Face { mesh, obj_source }))
+        });
+        self.loading = Some(job);
+    }
+
+    /// Displays `basis` without a rig (sliders reset to 0, camera framed on it).
     pub fn set_face(&mut self, name: impl Into<String>, basis: MuscleBasis) {
+        self.install_face(name.into(), basis, None, None, true);
+    }
+
+    fn install_face(
+        &mut self,
+        name: String,
+        basis: MuscleBasis,
+        source: Option<Arc<(FaceMesh, Option<String>)>>,
+        model: Option<Arc<FaceModel>>,
+        reframe: bool,
+    ) {
         let triangles: Vec<u32> = basis.triangles.iter().flatten().copied().collect();
         let edges = edge_indices(&basis.triangles);
         self.sliders = vec![0.0; basis.muscle_count()];
-        if let Some((c, r)) = bounding_sphere(&basis.neutral) {
+        if reframe && let Some((c, r)) = bounding_sphere(&basis.neutral) {
             self.camera = OrbitCamera::framing(c.as_vec3(), r as f32);
         }
+        let rig_geometry = model.as_ref().map(|m| Arc::new(RigGeometry::new(&m.rig)));
+        if let Some(m) = &model {
+            self.params = m.params.clone();
+        }
         self.face = Some(Face {
-            name: name.into(),
+            name,
             basis,
             topology_id: self.next_topology_id,
             triangles: Arc::new(triangles),
             edges: Arc::new(edges),
+            source,
+            model,
+            rig_geometry,
         });
         self.next_topology_id += 1;
-        self.selected = None;
-        self.set_lines(Vec::new());
+        self.selection = None;
+        self.refresh_overlays();
         self.repose();
+        if let Some(name) = self.options.preset.clone()
+            && self
+                .face
+                .as_ref()
+                .is_some_and(|f| f.basis.muscle_count() > 0)
+        {
+            self.apply_preset(&name);
+        }
+    }
+
+    /// Installs a solved model (rig + basis) as the displayed face.
+    pub fn set_model(&mut self, name: impl Into<String>, model: FaceModel) {
+        let same_mesh = self
+            .face
+            .as_ref()
+            .and_then(|f| f.source.as_ref())
+            .is_some_and(|s| s.0 == model.mesh);
+        let source = Arc::new((model.mesh.clone(), model.obj_source.clone()));
+        let basis = model.basis.clone();
+        self.install_face(
+            name.into(),
+            basis,
+            Some(source),
+            Some(Arc::new(model)),
+            !same_mesh,
+        );
     }
 
     /// The basis of the displayed face.
     pub fn basis(&self) -> Option<&MuscleBasis> {
         self.face.as_ref().map(|f| &f.basis)
+    }
+
+    /// The solved model of the displayed face, once available.
+    pub fn model(&self) -> Option<&FaceModel> {
+        self.face.as_ref().and_then(|f| f.model.as_deref())
     }
 
     /// Current slider values (one per muscle of [`ViewerApp::basis`]).
@@ -219,9 +310,25 @@ impl ViewerApp {
         self.repose();
     }
 
+    /// Applies the preset called `name` (see [`facebem::presets::find`]); false if unknown.
+    pub fn apply_preset(&mut self, name: &str) -> bool {
+        let Some(face) = &self.face else { return false };
+        let Some(p) = facebem::presets::find(name) else {
+            return false;
+        };
+        self.sliders = p.sliders_for(&face.basis.muscle_ids);
+        self.repose();
+        true
+    }
+
     /// The vertices handed to the renderer in the last frame (CPU blend of the basis).
     pub fn uploaded_vertices(&self) -> &[MeshVertex] {
         &self.uploaded_vertices
+    }
+
+    /// The overlay lines handed to the renderer.
+    pub fn overlay_line_vertices(&self) -> &[LineVertex] {
+        &self.lines
     }
 
     /// The status message, if any (e.g. why a file could not be opened).
@@ -229,14 +336,113 @@ impl ViewerApp {
         self.message.as_ref()
     }
 
+    /// Removes the status message.
+    pub fn clear_message(&mut self) {
+        self.message = None;
+    }
+
     /// Whether a background job is running.
     pub fn is_busy(&self) -> bool {
-        self.loading.is_some() || self.exporting.is_some()
+        self.loading.is_some() || self.rigging.is_some() || self.exporting.is_some()
+    }
+
+    /// Whether the rig is being computed (or loaded from the cache).
+    pub fn is_rigging(&self) -> bool {
+        self.rigging.is_some()
+    }
+
+    /// The pipeline parameters used for the next rebuild.
+    pub fn params_mut(&mut self) -> &mut PipelineParams {
+        &mut self.params
+    }
+
+    /// Which overlays are drawn.
+    pub fn set_overlays(&mut self, overlays: OverlayOptions) {
+        self.overlays = overlays;
+        self.refresh_overlays();
     }
 
     /// Sets the folder exports are written to.
     pub fn set_export_dir(&mut self, dir: &Path) {
         self.export_dir = dir.display().to_string();
+    }
+
+    /// The camera (for tests and scripted views).
+    pub fn camera_mut(&mut self) -> &mut OrbitCamera {
+        &mut self.camera
+    }
+
+    /// Where the 3D viewport was drawn in the last frame (egui points).
+    pub fn viewport_rect(&self) -> Option<egui::Rect> {
+        self.viewport_rect
+    }
+
+    /// The picked triangle, if any.
+    pub fn selected(&self) -> Option<TriangleHit> {
+        self.selection.as_ref().map(|s| s.hit)
+    }
+
+    /// The full selection (triangle, rig element, muscles), if any.
+    pub fn selection(&self) -> Option<&Selection> {
+        self.selection.as_ref()
+    }
+
+    fn cache_dir(&self) -> PathBuf {
+        self.options
+            .cache_dir
+            .clone()
+            .unwrap_or_else(facebem::open::default_cache_dir)
+    }
+
+    /// Computes (or loads from the cache) the rig of the displayed face with the current
+    /// parameters, in the background. The displayed rig stays usable until the new one is ready.
+    pub fn rebuild_rig(&mut self, ctx: &egui::Context) {
+        let Some(face) = &self.face else { return };
+        let Some(source) = face.source.clone() else {
+            self.error("This face has no source mesh to build a rig from".to_owned());
+            return;
+        };
+        if let Some(old) = self.rigging.take() {
+            old.control.cancel();
+            old.job.control().cancel();
+        }
+        let dir = self.cache_dir();
+        let params = self.params.clone();
+        let cache_path = source::cache_file_for(&dir, &source.0, &params);
+        let control = Control::new();
+        let worker_control = control.clone();
+        let name = face.name.clone();
+        let job = Job::spawn(format!("Rig of {name}"), Some(ctx.clone()), move |ctl| {
+            let progress_ctl = Arc::clone(ctl);
+            let cancel = worker_control.clone();
+            let control = worker_control.with_progress(move |p| {
+                if progress_ctl.is_cancelled() {
+                    cancel.cancel();
+                }
+                progress_ctl.report(p.stage.label(), source::overall_fraction(p));
+            });
+            ctl.report("cache", 0.0);
+            if let Err(e) = std::fs::create_dir_all(&dir) {
+                // Not fatal: the model is still computed; saving it will report the problem.
+                ctl.report(&format!("cache folder: {e}"), 0.0);
+            }
+            let (mesh, obj) = &*source;
+            facebem::open::load_or_build(mesh, obj.clone(), &params, &cache_path, &control)
+                .map_err(|e| e.to_string())
+        });
+        self.rigging = Some(RigJob {
+            job,
+            control,
+            topology_id: face.topology_id,
+        });
+    }
+
+    /// Cancels the running rig computation, if any (the displayed face stays).
+    pub fn cancel_rig(&mut self) {
+        if let Some(r) = &self.rigging {
+            r.control.cancel();
+            r.job.control().cancel();
+        }
     }
 
     /// Starts writing the current face in the background (`kind` says what); the outcome is
@@ -248,6 +454,7 @@ impl ViewerApp {
             .map_or_else(|| "face".to_owned(), |s| s.to_string_lossy().into_owned());
         let dir = PathBuf::from(self.export_dir.trim());
         let basis = face.basis.clone();
+        let model = face.model.clone();
         let sliders = self.sliders.clone();
         let job = Job::spawn(kind.label(), Some(ctx.clone()), move |ctl| {
             ctl.report("writing", 0.0);
@@ -255,7 +462,19 @@ impl ViewerApp {
                 ExportKind::ObjPose => {
                     let path = dir.join(format!("{stem}_pose.obj"));
                     let posed = basis.pose(&sliders).map_err(|e| e.to_string())?;
-                    let text = facebem::export::obj::plain_obj(&posed, &basis.triangles);
+                    let text = match model.as_deref() {
+                        Some(FaceModel {
+                            obj_source: Some(obj),
+                            mesh,
+                            ..
+                        }) => facebem::export::obj::pose_from_template(
+                            obj,
+                            &mesh.input_to_vertex,
+                            &posed,
+                        )
+                        .map_err(|e| e.to_string())?,
+                        _ => facebem::export::obj::plain_obj(&posed, &basis.triangles),
+                    };
                     facebem::write_atomic(&path, text.as_bytes()).map_err(|e| e.to_string())?;
                     path
                 }
@@ -266,20 +485,31 @@ impl ViewerApp {
                         .map_err(|e| e.to_string())?;
                     path
                 }
+                ExportKind::MuscleFile => {
+                    let path = dir.join(format!("{stem}.muscles"));
+                    let model = model.ok_or("the rig is not computed yet")?;
+                    face_prep::muscle_file::save(&path, &model.rig.muscles)
+                        .map_err(|e| e.to_string())?;
+                    path
+                }
             };
             Ok(format!("Exported {}", path.display()))
         });
         self.exporting = Some(job);
     }
 
-    /// The camera (for tests and scripted views).
-    pub fn camera_mut(&mut self) -> &mut OrbitCamera {
-        &mut self.camera
+    fn error(&mut self, text: String) {
+        self.message = Some(StatusMessage {
+            text,
+            is_error: true,
+        });
     }
 
-    /// The picked triangle, if any.
-    pub fn selected(&self) -> Option<TriangleHit> {
-        self.selected
+    fn info(&mut self, text: String) {
+        self.message = Some(StatusMessage {
+            text,
+            is_error: false,
+        });
     }
 
     fn set_lines(&mut self, lines: Vec<LineVertex>) {
@@ -287,56 +517,122 @@ impl ViewerApp {
         self.lines_generation += 1;
     }
 
+    fn refresh_overlays(&mut self) {
+        let mut lines = Vec::new();
+        let selected_element = self.selection.as_ref().and_then(|s| s.element);
+        if let Some(face) = &self.face {
+            if let (Some(model), Some(geo)) = (&face.model, &face.rig_geometry) {
+                lines = overlay_lines(&model.rig, geo, &self.overlays, selected_element);
+            }
+            // Without a rig element, outline the picked triangle of the displayed mesh.
+            if let Some(sel) = &self.selection
+                && sel.element.is_none()
+                && let Some(t) = face.basis.triangles.get(sel.hit.triangle)
+            {
+                let p: Vec<DVec3> = t
+                    .iter()
+                    .filter_map(|&i| self.posed.positions_f64().get(i as usize).copied())
+                    .collect();
+                for k in 0..p.len() {
+                    for q in [p[k], p[(k + 1) % p.len()]] {
+                        lines.push(LineVertex {
+                            position: q.as_vec3().to_array(),
+                            color: SELECTION,
+                        });
+                    }
+                }
+            }
+        }
+        self.set_lines(lines);
+    }
+
     fn repose(&mut self) {
         let Some(face) = &self.face else { return };
         if let Err(e) = self.posed.update(&face.basis, &self.sliders) {
-            self.message = Some(StatusMessage {
-                text: format!("Cannot pose {}: {e}", face.name),
-                is_error: true,
-            });
+            let text = format!("Cannot pose {}: {e}", face.name);
+            self.error(text);
         }
     }
 
-    fn poll_jobs(&mut self) {
+    fn poll_jobs(&mut self, ctx: &egui::Context) {
         if let Some(job) = &mut self.exporting
             && let Some(result) = job.poll()
         {
             let label = job.label().to_owned();
             self.exporting = None;
-            self.message = Some(match result {
-                Ok(text) => StatusMessage {
-                    text,
-                    is_error: false,
-                },
-                Err(e) => StatusMessage {
-                    text: format!("{label} failed: {e}"),
-                    is_error: true,
-                },
-            });
-        }
-        let Some(job) = &mut self.loading else { return };
-        let Some(result) = job.poll() else { return };
-        let label = job.label().to_owned();
-        self.loading = None;
-        match result {
-            Ok(face) => {
-                self.message = Some(StatusMessage {
-                    text: format!(
-                        "Opened {} ({} triangles, {} muscles)",
-                        face.path.display(),
-                        face.basis.triangles.len(),
-                        face.basis.muscle_count()
-                    ),
-                    is_error: false,
-                });
-                self.set_face(face.name, face.basis);
+            match result {
+                Ok(text) => self.info(text),
+                Err(e) => self.error(format!("{label} failed: {e}")),
             }
-            Err(e) => {
-                self.message = Some(StatusMessage {
-                    text: format!("Could not open: {e}"),
-                    is_error: true,
-                });
-                let _ = label;
+        }
+        if let Some(job) = &mut self.loading
+            && let Some(result) = job.poll()
+        {
+            self.loading = None;
+            match result {
+                Ok((name, Opened::Model(model))) => {
+                    self.info(format!(
+                        "Opened the saved rig {name} ({} triangles, {} muscles)",
+                        model.basis.triangles.len(),
+                        model.basis.muscle_count()
+                    ));
+                    self.cancel_rig();
+                    self.rigging = None;
+                    self.set_model(name, *model);
+                }
+                Ok((name, Opened::Face { mesh, obj_source })) => {
+                    self.info(format!(
+                        "Opened {name} ({} triangles); computing its muscle rig…",
+                        mesh.triangles.len()
+                    ));
+                    let basis = source::preview_basis(&mesh);
+                    let source = Arc::new((mesh, obj_source));
+                    self.params = PipelineParams::default();
+                    self.install_face(name, basis, Some(source), None, true);
+                    self.rebuild_rig(ctx);
+                }
+                Err(e) => self.error(format!("Could not open: {e}")),
+            }
+        }
+        if let Some(r) = &mut self.rigging
+            && let Some(result) = r.job.poll()
+        {
+            let topology_id = r.topology_id;
+            self.rigging = None;
+            let same_face = self
+                .face
+                .as_ref()
+                .is_some_and(|f| f.topology_id == topology_id);
+            match result {
+                // A rig for a face that was replaced meanwhile is dropped.
+                Ok(_) if !same_face => {}
+                Ok((model, status)) => {
+                    let name = self
+                        .face
+                        .as_ref()
+                        .map(|f| f.name.clone())
+                        .unwrap_or_default();
+                    let text = match &status {
+                        CacheStatus::Loaded => format!(
+                            "Rig of {name} loaded from the cache ({} muscles)",
+                            model.basis.muscle_count()
+                        ),
+                        CacheStatus::Computed { save_error, .. } => format!(
+                            "Rig of {name} computed in {:.1} s ({} elements){}",
+                            model.report.prep_seconds
+                                + model.report.solve_seconds
+                                + model.report.transfer_seconds,
+                            model.report.shell_elements,
+                            save_error
+                                .as_ref()
+                                .map(|e| format!("; not cached: {e}"))
+                                .unwrap_or_default()
+                        ),
+                    };
+                    self.set_model(name, model);
+                    self.info(text);
+                }
+                Err(e) => self.error(format!("Rig computation stopped: {e}")),
             }
         }
     }
@@ -345,7 +641,7 @@ impl ViewerApp {
         ui.horizontal(|ui| {
             ui.label("File:");
             let edit = egui::TextEdit::singleline(&mut self.open_path)
-                .hint_text("face.obj / face.glb / rig")
+                .hint_text("face.obj / face.glb / saved .rig")
                 .desired_width(320.0);
             let r = ui.add(edit).labelled_by(ui.label("Path").id);
             let enter = r.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
@@ -354,7 +650,7 @@ impl ViewerApp {
                 self.open(ui.ctx(), path);
             }
             if ui.button("Open default face").clicked() {
-                self.open(ui.ctx(), source::default_face_path());
+                self.open_default_face(ui.ctx());
             }
         });
         if let Some(m) = &self.message {
@@ -367,7 +663,7 @@ impl ViewerApp {
         }
     }
 
-    fn controls(&mut self, ui: &mut egui::Ui) {
+    fn sliders_ui(&mut self, ui: &mut egui::Ui) {
         let Some(face) = &self.face else {
             ui.label("No face loaded.");
             return;
@@ -382,7 +678,7 @@ impl ViewerApp {
         ui.strong("Muscles (−1 contracts … +1 relaxes)");
         let ids = face.basis.muscle_ids.clone();
         if ids.is_empty() {
-            ui.label("The muscle rig is not solved yet.");
+            ui.label("The muscle rig is not computed yet.");
         }
         let mut changed = false;
         for (id, value) in ids.iter().zip(self.sliders.iter_mut()) {
@@ -392,8 +688,9 @@ impl ViewerApp {
                 .changed();
         }
         ui.horizontal_wrapped(|ui| {
+            let enabled = !ids.is_empty();
             if ui
-                .add_enabled(!ids.is_empty(), egui::Button::new("Reset muscles"))
+                .add_enabled(enabled, egui::Button::new("Reset muscles"))
                 .clicked()
             {
                 self.sliders.iter_mut().for_each(|s| *s = 0.0);
@@ -402,7 +699,7 @@ impl ViewerApp {
             for preset in facebem::presets::ALL.iter().filter(|p| p.name != "neutral") {
                 let button = egui::Button::new(preset_label(preset.name));
                 let r = ui
-                    .add_enabled(!ids.is_empty(), button)
+                    .add_enabled(enabled, button)
                     .on_hover_text(format!("{} ({})", preset.description, preset.action_units));
                 if r.clicked() {
                     self.sliders = preset.sliders_for(&ids);
@@ -413,19 +710,106 @@ impl ViewerApp {
         if changed {
             self.repose();
         }
-        ui.separator();
+    }
+
+    fn view_ui(&mut self, ui: &mut egui::Ui) {
         ui.strong("View");
-        ui.checkbox(&mut self.shaded, "Shaded");
-        ui.checkbox(&mut self.wireframe, "Wireframe");
-        if ui.button("Reset view").clicked() {
-            self.camera.reset();
+        ui.horizontal(|ui| {
+            ui.checkbox(&mut self.shaded, "Shaded");
+            ui.checkbox(&mut self.wireframe, "Wireframe");
+            if ui.button("Reset view").clicked() {
+                self.camera.reset();
+            }
+        });
+        let mut o = self.overlays;
+        ui.horizontal_wrapped(|ui| {
+            ui.checkbox(&mut o.muscles, "Muscles");
+            ui.checkbox(&mut o.skull, "Skull");
+            ui.checkbox(&mut o.boxes, "Feature boxes");
+            ui.checkbox(&mut o.whole_shell, "Whole shell");
+        });
+        if o != self.overlays {
+            self.set_overlays(o);
         }
-        ui.label("Drag: orbit · right/middle drag or shift-drag: pan · wheel: zoom · click: pick");
-        if let Some(hit) = self.selected {
-            ui.separator();
-            ui.label(format!("Selected triangle {}", hit.triangle));
+        ui.label("Drag: orbit · right/middle or shift-drag: pan · wheel: zoom · click: pick");
+        if let Some(sel) = &self.selection {
+            ui.label(format!("Selected triangle {}", sel.hit.triangle));
+            match sel.element {
+                Some(e) if sel.muscles.is_empty() => {
+                    ui.label(format!("Element {e}: in no muscle"));
+                }
+                Some(e) => {
+                    ui.label(format!("Element {e}: {}", sel.muscles.join(", ")));
+                }
+                None => {}
+            }
         }
-        ui.separator();
+    }
+
+    fn rig_ui(&mut self, ui: &mut egui::Ui) {
+        ui.strong("Rig");
+        let rig = &mut self.params.rig;
+        let mut offset = rig.offset;
+        let mut thickness = rig.thickness;
+        ui.add(
+            egui::Slider::new(&mut offset, 0.002..=0.1)
+                .logarithmic(true)
+                .text("Offset (× face size)"),
+        );
+        ui.add(
+            egui::Slider::new(&mut thickness, 0.002..=0.1)
+                .logarithmic(true)
+                .text("Thickness (× face size)"),
+        );
+        rig.offset = offset;
+        rig.thickness = thickness;
+        let has_source = self.face.as_ref().is_some_and(|f| f.source.is_some());
+        ui.horizontal(|ui| {
+            if ui
+                .add_enabled(has_source, egui::Button::new("Rebuild rig"))
+                .clicked()
+            {
+                self.rebuild_rig(ui.ctx());
+            }
+            if ui
+                .add_enabled(has_source, egui::Button::new("Load muscle file"))
+                .on_hover_text("Reads <Export folder>/<face>.muscles and rebuilds the rig with it")
+                .clicked()
+            {
+                self.load_muscle_file(ui.ctx());
+            }
+        });
+        if let Some(m) = self.model() {
+            ui.label(format!(
+                "{} shell elements, {} muscles, {} skull elements",
+                m.rig.shell.triangles.len(),
+                m.rig.muscles.len(),
+                m.rig.skull.len()
+            ));
+        }
+    }
+
+    fn load_muscle_file(&mut self, ctx: &egui::Context) {
+        let Some(face) = &self.face else { return };
+        let Some(model) = &face.model else {
+            self.error("Load muscle file: the rig is not computed yet".to_owned());
+            return;
+        };
+        let stem = Path::new(&face.name)
+            .file_stem()
+            .map_or_else(|| "face".to_owned(), |s| s.to_string_lossy().into_owned());
+        let path = Path::new(self.export_dir.trim()).join(format!("{stem}.muscles"));
+        match face_prep::muscle_file::load(&path, model.rig.shell.triangles.len()) {
+            Ok(muscles) => {
+                self.params.muscles = Some(muscles.into_iter().map(Into::into).collect());
+                self.info(format!("Loaded {}; rebuilding the rig", path.display()));
+                self.rebuild_rig(ctx);
+            }
+            Err(e) => self.error(format!("Could not load the muscle file: {e}")),
+        }
+    }
+
+    fn export_ui(&mut self, ui: &mut egui::Ui) {
         ui.strong("Export");
         ui.horizontal(|ui| {
             let label = ui.label("Export folder");
@@ -434,9 +818,15 @@ impl ViewerApp {
         });
         ui.horizontal_wrapped(|ui| {
             let idle = self.exporting.is_none();
-            for kind in [ExportKind::ObjPose, ExportKind::Gltf] {
+            let has_rig = self.model().is_some();
+            for kind in [
+                ExportKind::ObjPose,
+                ExportKind::Gltf,
+                ExportKind::MuscleFile,
+            ] {
+                let enabled = idle && (kind != ExportKind::MuscleFile || has_rig);
                 if ui
-                    .add_enabled(idle, egui::Button::new(kind.label()))
+                    .add_enabled(enabled, egui::Button::new(kind.label()))
                     .clicked()
                 {
                     self.export(ui.ctx(), kind);
@@ -452,7 +842,20 @@ impl ViewerApp {
                 ui.label(job.label());
             });
         }
-        let Some(job) = &self.loading else {
+        let job = match (&self.loading, &self.rigging) {
+            (Some(j), _) => Some((
+                j.label().to_owned(),
+                j.control().fraction(),
+                j.control().stage(),
+            )),
+            (None, Some(r)) => Some((
+                r.job.label().to_owned(),
+                r.job.control().fraction(),
+                r.job.control().stage(),
+            )),
+            (None, None) => None,
+        };
+        let Some((label, fraction, stage)) = job else {
             ui.label(if self.has_wgpu {
                 "Ready"
             } else {
@@ -460,23 +863,25 @@ impl ViewerApp {
             });
             return;
         };
+        let mut cancel = false;
         ui.horizontal(|ui| {
-            let ctl = job.control();
-            ui.label(job.label());
+            ui.label(label);
             ui.add(
-                egui::ProgressBar::new(ctl.fraction())
-                    .text(ctl.stage())
+                egui::ProgressBar::new(fraction)
+                    .text(stage)
                     .desired_width(260.0),
             );
-            if ui.button("Cancel").clicked() {
-                ctl.cancel();
-            }
+            cancel = self.rigging.is_some() && ui.button("Cancel").clicked();
         });
+        if cancel {
+            self.cancel_rig();
+        }
     }
 
     fn viewport(&mut self, ui: &mut egui::Ui) {
         let size = ui.available_size();
         let (rect, response) = ui.allocate_exact_size(size, egui::Sense::click_and_drag());
+        self.viewport_rect = Some(rect);
         let aspect = rect.width() / rect.height().max(1.0);
         let delta = response.drag_delta();
         let pan = response.dragged_by(egui::PointerButton::Secondary)
@@ -554,43 +959,42 @@ impl ViewerApp {
     fn pick(&mut self, ndc: Vec2, aspect: f32) {
         let Some(face) = &self.face else { return };
         let (o, d) = self.camera.ray_through(ndc, aspect);
-        let hit = pick_triangle(
-            self.posed.positions_f64(),
-            &face.basis.triangles,
-            o.as_dvec3(),
-            d.as_dvec3(),
-        );
-        self.selected = hit;
-        let mut lines = Vec::new();
-        if let Some(h) = hit
-            && let Some(t) = face.basis.triangles.get(h.triangle)
-        {
-            let p: Vec<DVec3> = t
-                .iter()
-                .filter_map(|&i| self.posed.positions_f64().get(i as usize).copied())
-                .collect();
-            for k in 0..p.len() {
-                for q in [p[k], p[(k + 1) % p.len()]] {
-                    lines.push(LineVertex {
-                        position: q.as_vec3().to_array(),
-                        color: SELECTION,
-                    });
+        let (o, d) = (o.as_dvec3(), d.as_dvec3());
+        let hit = pick_triangle(self.posed.positions_f64(), &face.basis.triangles, o, d);
+        self.selection = hit.map(|hit| {
+            // The rig's front elements (user frame, neutral): on a simplified large face they
+            // are not the user's triangles, so they are picked separately.
+            let element = match (&face.model, &face.rig_geometry) {
+                (Some(m), Some(geo)) => {
+                    let n = m.rig.face_triangle_count.min(m.rig.shell.triangles.len());
+                    pick_triangle(&geo.vertices, &m.rig.shell.triangles[..n], o, d)
+                        .map(|h| h.triangle as u32)
                 }
+                _ => None,
+            };
+            let muscles = match (&face.model, element) {
+                (Some(m), Some(e)) => muscles_of_element(&m.rig, e),
+                _ => Vec::new(),
+            };
+            Selection {
+                hit,
+                element,
+                muscles,
             }
-        }
-        self.set_lines(lines);
+        });
+        self.refresh_overlays();
     }
 
     fn automation(&mut self, ctx: &egui::Context) {
         if self.ready_at.is_none() && self.frames_with_face >= 3 {
-            self.ready_at = Some(Instant::now());
-            if let Some(path) = &self.options.ready_file
-                && let Err(e) = facebem::write_atomic(path, b"ready\n")
-            {
-                self.message = Some(StatusMessage {
-                    text: format!("Cannot write the ready file {}: {e}", path.display()),
-                    is_error: true,
-                });
+            let wait_for_preset = self.options.preset.is_some() && self.model().is_none();
+            if !wait_for_preset {
+                self.ready_at = Some(Instant::now());
+                if let Some(path) = &self.options.ready_file
+                    && let Err(e) = facebem::write_atomic(path, b"ready\n")
+                {
+                    self.error(format!("Cannot write the ready file: {e}"));
+                }
             }
         }
         if let Some(after) = self.options.exit_after_ready {
@@ -615,19 +1019,28 @@ impl ViewerApp {
 
     /// Draws one frame of the UI (what `eframe::App::ui` calls).
     pub fn show(&mut self, ui: &mut egui::Ui) {
-        self.poll_jobs();
-        self.dropped_files(ui.ctx());
+        let ctx = ui.ctx().clone();
+        self.poll_jobs(&ctx);
+        self.dropped_files(&ctx);
         egui::Panel::top("toolbar").show(ui, |ui| self.toolbar(ui));
         egui::Panel::bottom("status").show(ui, |ui| self.status_bar(ui));
         egui::Panel::left("controls")
-            .default_size(300.0)
+            .default_size(320.0)
             .show(ui, |ui| {
-                egui::ScrollArea::vertical().show(ui, |ui| self.controls(ui));
+                egui::ScrollArea::vertical().show(ui, |ui| {
+                    self.sliders_ui(ui);
+                    ui.separator();
+                    self.view_ui(ui);
+                    ui.separator();
+                    self.rig_ui(ui);
+                    ui.separator();
+                    self.export_ui(ui);
+                });
             });
         egui::CentralPanel::default()
             .frame(egui::Frame::NONE)
             .show(ui, |ui| self.viewport(ui));
-        self.automation(&ui.ctx().clone());
+        self.automation(&ctx);
     }
 }
 

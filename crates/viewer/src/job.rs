@@ -90,7 +90,7 @@ impl<T: Send + 'static> Job<T> {
     pub fn spawn(
         label: impl Into<String>,
         repaint: Option<egui::Context>,
-        work: impl FnOnce(&JobControl) -> JobResult<T> + Send + 'static,
+        work: impl FnOnce(&Arc<JobControl>) -> JobResult<T> + Send + 'static,
     ) -> Self {
         let control = Arc::new(JobControl {
             repaint: Mutex::new(repaint),

@@ -17,6 +17,7 @@
 pub mod app;
 pub mod camera;
 pub mod job;
+pub mod overlay;
 pub mod picking;
 pub mod posed_mesh;
 pub mod renderer;

@@ -1,4 +1,4 @@
-//! `viewer [FILE] [--ready-file PATH] [--exit-after-ready SECONDS]`: the facebem face rig viewer.
+//! `viewer [FILE] [--preset NAME] [--ready-file PATH] [--exit-after-ready SECONDS]`: the facebem face rig viewer.
 
 use std::path::PathBuf;
 use std::time::Duration;
@@ -6,8 +6,7 @@ use std::time::Duration;
 use anyhow::{Context, bail};
 use viewer::{ViewerApp, ViewerOptions};
 
-const USAGE: &str =
-    "usage: viewer [FILE.obj|.gltf|.glb|rig] [--ready-file PATH] [--exit-after-ready SECONDS]";
+const USAGE: &str = "usage: viewer [FILE.obj|.gltf|.glb|rig] [--preset NAME] [--ready-file PATH] [--exit-after-ready SECONDS]";
 
 fn parse_args() -> anyhow::Result<ViewerOptions> {
     let mut options = ViewerOptions::default();
@@ -33,6 +32,17 @@ fn parse_args() -> anyhow::Result<ViewerOptions> {
                         format!("--exit-after-ready: not a number of seconds: {v:?}")
                     })?;
                 options.exit_after_ready = Some(Duration::from_secs_f64(secs));
+            }
+            Some("--preset") => {
+                let v = args.next().context("--preset needs a name")?;
+                let name = v.to_string_lossy().into_owned();
+                if facebem::presets::find(&name).is_none() {
+                    bail!(
+                        "unknown preset {name:?}; known: {}",
+                        facebem::presets::names().join(", ")
+                    );
+                }
+                options.preset = Some(name);
             }
             Some(s) if s.starts_with("--") => bail!("unknown option {s}\n{USAGE}"),
             _ if options.open.is_none() => options.open = Some(PathBuf::from(arg)),

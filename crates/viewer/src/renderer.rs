@@ -199,11 +199,12 @@ impl GpuScene {
             step_mode: wgpu::VertexStepMode::Vertex,
             attributes: &LINE_LAYOUT,
         })];
-        let depth = |write: bool| {
+        // Overlays (write_depth = false and not the wireframe) are drawn "x-ray": always on top.
+        let depth = |write: bool, compare: wgpu::CompareFunction| {
             Some(wgpu::DepthStencilState {
                 format: DEPTH_FORMAT,
                 depth_write_enabled: Some(write),
-                depth_compare: Some(wgpu::CompareFunction::LessEqual),
+                depth_compare: Some(compare),
                 stencil: wgpu::StencilState::default(),
                 bias: wgpu::DepthBiasState::default(),
             })
@@ -218,7 +219,8 @@ impl GpuScene {
                     fs: &str,
                     buffers: &[Option<wgpu::VertexBufferLayout>],
                     topology: wgpu::PrimitiveTopology,
-                    write_depth: bool| {
+                    write_depth: bool,
+                    compare: wgpu::CompareFunction| {
             device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
                 label: Some(label),
                 layout: Some(&scene_pl),
@@ -232,7 +234,7 @@ impl GpuScene {
                     topology,
                     ..Default::default()
                 },
-                depth_stencil: depth(write_depth),
+                depth_stencil: depth(write_depth, compare),
                 multisample: wgpu::MultisampleState::default(),
                 fragment: Some(wgpu::FragmentState {
                     module: &shader,
@@ -251,6 +253,7 @@ impl GpuScene {
             &mesh_buffers,
             wgpu::PrimitiveTopology::TriangleList,
             true,
+            wgpu::CompareFunction::LessEqual,
         );
         let wire_pipeline = make(
             "facebem wire",
@@ -259,6 +262,7 @@ impl GpuScene {
             &mesh_buffers,
             wgpu::PrimitiveTopology::LineList,
             false,
+            wgpu::CompareFunction::LessEqual,
         );
         let line_pipeline = make(
             "facebem lines",
@@ -267,6 +271,7 @@ impl GpuScene {
             &line_buffers,
             wgpu::PrimitiveTopology::LineList,
             false,
+            wgpu::CompareFunction::Always,
         );
         let blit_pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
             label: Some("facebem blit"),

@@ -1,120 +1,74 @@
-//! Opening face files for the viewer (the neutral mesh shown while the rig is being built).
+//! Opening faces and rigs for the viewer: the neutral preview, the rig cache location and the
+//! mapping of pipeline progress to one progress bar.
 
 use std::path::{Path, PathBuf};
 
+use face_prep::FaceMesh;
 use facebem::MuscleBasis;
-use glam::DVec3;
+use facebem::PipelineParams;
+use facebem::open::OpenError;
+use facebem::{Progress, Stage};
 
-/// Why a face file could not be opened. Shown to the user; the app keeps running.
-#[derive(Debug, thiserror::Error)]
-pub enum OpenError {
-    /// The file does not exist or cannot be read.
-    #[error("cannot read {path}: {source}")]
-    Io {
-        /// The file.
-        path: PathBuf,
-        /// The I/O error.
-        source: std::io::Error,
-    },
-    /// The extension is none of the supported formats.
-    #[error("{path}: unsupported file type (expected .obj, .gltf, .glb or a saved rig)")]
-    UnsupportedType {
-        /// The file.
-        path: PathBuf,
-    },
-    /// The OBJ parser rejected the file.
-    #[error("{path}: not a valid OBJ file: {message}")]
-    Obj {
-        /// The file.
-        path: PathBuf,
-        /// The parser's message.
-        message: String,
-    },
-    /// The file parsed but holds no triangle.
-    #[error("{path}: contains no triangles")]
-    NoTriangles {
-        /// The file.
-        path: PathBuf,
-    },
-    /// A vertex coordinate is NaN or infinite.
-    #[error("{path}: vertex {vertex} has a non-finite coordinate")]
-    NonFinite {
-        /// The file.
-        path: PathBuf,
-        /// Index of the vertex (0-based, after merging objects).
-        vertex: usize,
-    },
-}
-
-/// The bundled default face (MediaPipe canonical face, 852 triangles).
+/// The bundled default face's file in the source tree (MediaPipe canonical face, 852 triangles).
+/// The app itself opens the copy compiled into `facebem` ([`facebem::open::DEFAULT_FACE_OBJ`]).
 pub fn default_face_path() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets/mediapipe_canonical_4loop.obj")
 }
 
-/// Reads the triangles of a face file as a muscle-less [`MuscleBasis`] (the neutral mesh), so
-/// the face can be shown before its rig is solved.
-pub fn load_neutral(path: &Path) -> Result<MuscleBasis, OpenError> {
-    let ext = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .map(str::to_ascii_lowercase)
-        .unwrap_or_default();
-    match ext.as_str() {
-        "obj" => load_obj(path),
-        _ => Err(OpenError::UnsupportedType {
-            path: path.to_owned(),
-        }),
+/// A muscle-less [`MuscleBasis`] of `mesh`: what the viewer shows while the rig is computed.
+/// Same vertices and triangles as the pipeline's basis, so the view does not jump when the
+/// rig arrives.
+pub fn preview_basis(mesh: &FaceMesh) -> MuscleBasis {
+    MuscleBasis {
+        muscle_ids: Vec::new(),
+        neutral: mesh.vertices.clone(),
+        triangles: mesh.triangles.clone(),
+        displacements: Vec::new(),
     }
 }
 
-fn load_obj(path: &Path) -> Result<MuscleBasis, OpenError> {
-    std::fs::metadata(path).map_err(|source| OpenError::Io {
-        path: path.to_owned(),
-        source,
-    })?;
-    let options = tobj::LoadOptions {
-        triangulate: true,
-        single_index: true,
-        ignore_points: true,
-        ignore_lines: true,
+/// Reads a face file (OBJ, glTF, GLB) as its neutral preview basis.
+pub fn load_neutral(path: &Path) -> Result<MuscleBasis, OpenError> {
+    let (mesh, _) = facebem::open::read_face(path)?;
+    Ok(preview_basis(&mesh))
+}
+
+/// Where the viewer caches the model of `mesh` computed with `params`: one file per mesh and
+/// parameter set, `<dir>/<mesh hash>-<params hash>.rig` (so editing parameters and going back
+/// reloads instantly). `dir` defaults to [`facebem::open::default_cache_dir`]
+/// (`$XDG_CACHE_HOME/facebem` or `~/.cache/facebem`).
+pub fn cache_file_for(dir: &Path, mesh: &FaceMesh, params: &PipelineParams) -> PathBuf {
+    let hex = |bytes: &[u8]| bytes.iter().map(|b| format!("{b:02x}")).collect::<String>();
+    let mesh_hash = facebem::cache::mesh_hash(mesh);
+    let params_hash = facebem::cache::params_hash(params);
+    dir.join(format!(
+        "{}-{}.rig",
+        hex(&mesh_hash[..12]),
+        hex(&params_hash[..6])
+    ))
+}
+
+/// One 0…1 progress value over all pipeline stages, weighted by their typical share of the time
+/// (assembly and LU dominate).
+///
+/// ```
+/// use facebem::{Progress, Stage};
+/// use viewer::source::overall_fraction;
+/// let start = overall_fraction(Progress { stage: Stage::Prep, done: 0, total: 1 });
+/// let mid = overall_fraction(Progress { stage: Stage::Factorisation, done: 1, total: 2 });
+/// let end = overall_fraction(Progress { stage: Stage::Transfer, done: 1, total: 1 });
+/// assert!(start == 0.0 && start < mid && mid < end && end == 1.0);
+/// ```
+pub fn overall_fraction(p: Progress) -> f32 {
+    let (start, end) = match p.stage {
+        Stage::Prep => (0.0, 0.05),
+        Stage::Assembly => (0.05, 0.55),
+        Stage::Factorisation => (0.55, 0.9),
+        Stage::Solves => (0.9, 0.97),
+        Stage::Transfer => (0.97, 1.0),
     };
-    let (models, _materials) = tobj::load_obj(path, &options).map_err(|e| OpenError::Obj {
-        path: path.to_owned(),
-        message: e.to_string(),
-    })?;
-    let mut neutral = Vec::new();
-    let mut triangles = Vec::new();
-    for model in &models {
-        let base = neutral.len() as u32;
-        let m = &model.mesh;
-        neutral.extend(
-            m.positions
-                .chunks_exact(3)
-                .map(|p| DVec3::new(p[0] as f64, p[1] as f64, p[2] as f64)),
-        );
-        triangles.extend(
-            m.indices
-                .chunks_exact(3)
-                .map(|t| [t[0] + base, t[1] + base, t[2] + base]),
-        );
-    }
-    if let Some(vertex) = neutral.iter().position(|p| !p.is_finite()) {
-        return Err(OpenError::NonFinite {
-            path: path.to_owned(),
-            vertex,
-        });
-    }
-    if triangles.is_empty() {
-        return Err(OpenError::NoTriangles {
-            path: path.to_owned(),
-        });
-    }
-    Ok(MuscleBasis {
-        muscle_ids: Vec::new(),
-        neutral,
-        triangles,
-        displacements: Vec::new(),
-    })
+    let f = p.done as f32 / p.total.max(1) as f32;
+    start + (end - start) * f.clamp(0.0, 1.0)
 }
 
 #[cfg(test)]
@@ -137,11 +91,22 @@ mod tests {
         let err = load_neutral(&bad).unwrap_err().to_string();
         assert!(err.contains("bad.obj"), "{err}");
         let missing = dir.path().join("missing.obj");
-        assert!(matches!(load_neutral(&missing), Err(OpenError::Io { .. })));
-        let txt = dir.path().join("face.txt");
         assert!(matches!(
-            load_neutral(&txt),
-            Err(OpenError::UnsupportedType { .. })
+            load_neutral(&missing),
+            Err(OpenError::Read { .. })
         ));
+    }
+
+    #[test]
+    fn cache_file_name_depends_on_mesh_and_parameters() {
+        let (mesh, _) = facebem::open::read_face(&default_face_path()).unwrap();
+        let dir = Path::new("/cache");
+        let p = PipelineParams::default();
+        let a = cache_file_for(dir, &mesh, &p);
+        assert_eq!(a, cache_file_for(dir, &mesh, &p));
+        let mut q = p.clone();
+        q.rig.offset *= 2.0;
+        assert_ne!(a, cache_file_for(dir, &mesh, &q));
+        assert!(a.starts_with(dir) && a.extension().is_some_and(|e| e == "rig"));
     }
 }

@@ -1,4 +1,5 @@
-//! Rendered images of the default face (wgpu on lavapipe), compared with committed snapshots.
+//! Rendered images of the default face with its real rig (computed by the pipeline into a
+//! fresh cache folder), wgpu on lavapipe, compared with committed snapshots.
 //! Create or update them with `UPDATE_SNAPSHOTS=1 cargo test --release -p viewer --test snapshots`.
 
 mod common;
@@ -23,39 +24,86 @@ fn differs(a: [u8; 4], b: [u8; 4]) -> bool {
 }
 
 #[test]
-fn default_face_neutral_and_smile_snapshots() {
-    let mut harness = common::harness_with(Some(common::synthetic_default_basis()));
+fn default_face_snapshots_neutral_happy_and_overlays() {
+    let cache = tempfile::tempdir().unwrap();
+    let mut harness = egui_kittest::Harness::builder()
+        .with_size([1100.0, 760.0])
+        .with_render_cursor(false)
+        .wgpu()
+        .build_eframe(|cc| {
+            viewer::ViewerApp::new(
+                cc,
+                viewer::ViewerOptions {
+                    cache_dir: Some(cache.path().to_path_buf()),
+                    ..Default::default()
+                },
+            )
+        });
+    common::wait_idle(&mut harness);
+    assert!(
+        harness.state().model().is_some(),
+        "{:?}",
+        harness.state().message()
+    );
+    // Machine-dependent text (timings, working directory) stays out of the images.
+    harness.state_mut().clear_message();
+    harness
+        .state_mut()
+        .set_export_dir(std::path::Path::new("/exports"));
+    harness.run();
     let options = SnapshotOptions::new().threshold(0.6).max_failed_pixels(40);
+
+    // Neutral, with the muscle overlay (on by default).
+    let with_muscles = harness.render().expect("wgpu render");
+    harness.snapshot_options("default_face_neutral", &options);
+
+    harness.get_by_label("Muscles").click();
     harness.run();
     let neutral = harness.render().expect("wgpu render");
     let (w, h) = neutral.dimensions();
     let background = neutral.get_pixel(w - 4, h / 2).0;
+    let total = viewport_pixels(&neutral).len();
     let face = viewport_pixels(&neutral)
         .into_iter()
         .filter(|p| differs(*p, background))
         .count();
-    let total = viewport_pixels(&neutral).len();
     assert!(
         face * 10 > total,
         "face covers only {face} of {total} viewport pixels"
     );
-    harness.snapshot_options("default_face_neutral", &options);
+    let overlay = viewport_pixels(&with_muscles)
+        .into_iter()
+        .zip(viewport_pixels(&neutral))
+        .filter(|(a, b)| differs(*a, *b))
+        .count();
+    assert!(
+        overlay > 100,
+        "the muscle overlay changed only {overlay} pixels"
+    );
 
-    harness.get_by_label("Smile").click();
+    harness.get_by_label("Happy").click();
     harness.run();
-    let smile = harness.render().expect("wgpu render");
+    let happy = harness.render().expect("wgpu render");
     let changed = viewport_pixels(&neutral)
         .into_iter()
-        .zip(viewport_pixels(&smile))
+        .zip(viewport_pixels(&happy))
         .filter(|(a, b)| differs(*a, *b))
         .count();
     assert!(
         changed > 200,
-        "the Smile preset changed only {changed} viewport pixels"
+        "the Happy preset changed only {changed} viewport pixels"
     );
-    harness.snapshot_options("default_face_smile", &options);
+    harness.snapshot_options("default_face_happy", &options);
 
-    harness.get_by_label("Wireframe").click();
-    harness.run();
-    harness.snapshot_options("default_face_smile_wireframe", &options);
+    for label in [
+        "Muscles",
+        "Skull",
+        "Feature boxes",
+        "Whole shell",
+        "Wireframe",
+    ] {
+        harness.get_by_label(label).click();
+        harness.run();
+    }
+    harness.snapshot_options("default_face_happy_overlays", &options);
 }

@@ -117,24 +117,39 @@ fn opening_a_bad_file_shows_the_message_and_keeps_the_face() {
 }
 
 #[test]
-fn the_default_face_opens_in_the_background_on_start() {
-    let mut harness = egui_kittest::Harness::builder()
-        .with_size([900.0, 600.0])
-        .wgpu()
-        .build_eframe(|cc| viewer::ViewerApp::new(cc, viewer::ViewerOptions::default()));
-    common::wait_idle(&mut harness);
-    let basis = harness
-        .state()
-        .basis()
-        .expect("default face loaded")
-        .clone();
-    assert_eq!(basis.triangles.len(), 852);
-    assert_eq!(
-        harness.state().uploaded_vertices().len(),
-        basis.neutral.len()
-    );
-    let msg = harness.state().message().cloned().unwrap();
+fn first_run_computes_and_caches_the_default_rig_and_the_second_run_loads_it() {
+    let cache = tempfile::tempdir().unwrap();
+    let options = viewer::ViewerOptions {
+        cache_dir: Some(cache.path().to_path_buf()),
+        ..Default::default()
+    };
+    let start = |options: viewer::ViewerOptions| {
+        egui_kittest::Harness::builder()
+            .with_size([900.0, 600.0])
+            .wgpu()
+            .build_eframe(move |cc| viewer::ViewerApp::new(cc, options.clone()))
+    };
+    let mut first = start(options.clone());
+    common::wait_idle(&mut first);
+    let msg = first.state().message().cloned().unwrap();
     assert!(!msg.is_error, "{}", msg.text);
+    assert!(msg.text.contains("computed"), "{}", msg.text);
+    let model = first.state().model().expect("the rig is computed").clone();
+    assert_eq!(model.basis.triangles.len(), 852);
+    assert_eq!(model.basis.muscle_count(), 10);
+    assert_eq!(first.state().basis(), Some(&model.basis));
+    let cached: Vec<_> = std::fs::read_dir(cache.path()).unwrap().collect();
+    assert_eq!(cached.len(), 1, "one cache file");
+    // Every slider is there and moves the face as the basis says.
+    for kind in face_prep::MuscleKind::ALL {
+        first.get_by_role_and_label(Role::Slider, kind.display_name());
+    }
+
+    let mut second = start(options);
+    common::wait_idle(&mut second);
+    let msg = second.state().message().cloned().unwrap();
+    assert!(msg.text.contains("loaded from the cache"), "{}", msg.text);
+    assert_eq!(second.state().basis(), Some(&model.basis));
 }
 
 #[test]
@@ -169,4 +184,94 @@ fn export_buttons_write_the_posed_obj_and_a_glb() {
     common::wait_idle(&mut harness);
     let glb = std::fs::read(dir.path().join("mediapipe_canonical_4loop.glb")).unwrap();
     assert_eq!(&glb[..4], b"glTF");
+}
+
+#[test]
+fn viewport_drag_orbits_wheel_zooms_click_picks_and_reset_view_restores() {
+    let basis = common::synthetic_default_basis();
+    let mut harness = common::harness_with(Some(basis.clone()));
+    let home = harness.state_mut().camera_mut().clone();
+    // The viewport fills the window right of the control panel; its centre shows the face.
+    let centre = egui::pos2(700.0, 360.0);
+
+    harness.hover_at(centre);
+    harness.drag_at(centre);
+    harness.step();
+    harness.hover_at(centre + egui::vec2(60.0, 0.0));
+    harness.step();
+    harness.drop_at(centre + egui::vec2(60.0, 0.0));
+    harness.run();
+    let cam = harness.state_mut().camera_mut().clone();
+    assert!(
+        (cam.yaw - home.yaw).abs() > 0.1,
+        "drag did not orbit: yaw {}",
+        cam.yaw
+    );
+    assert_eq!(cam.distance, home.distance);
+
+    harness.hover_at(centre);
+    harness.event(egui::Event::MouseWheel {
+        unit: egui::MouseWheelUnit::Point,
+        delta: egui::vec2(0.0, 120.0),
+        phase: egui::TouchPhase::Move,
+        modifiers: egui::Modifiers::NONE,
+        source: egui::MouseWheelSource::Wheel,
+    });
+    harness.run();
+    let zoomed = harness.state_mut().camera_mut().distance;
+    assert!(
+        zoomed < home.distance,
+        "wheel up should zoom in: {zoomed} vs {}",
+        home.distance
+    );
+
+    harness.get_by_label("Reset view").click();
+    harness.run();
+    assert_eq!(*harness.state_mut().camera_mut(), home);
+
+    // Click the centre: the picked triangle is the one the camera ray hits first.
+    harness.hover_at(centre);
+    harness.event(egui::Event::PointerButton {
+        pos: centre,
+        button: egui::PointerButton::Primary,
+        pressed: true,
+        modifiers: egui::Modifiers::NONE,
+    });
+    harness.event(egui::Event::PointerButton {
+        pos: centre,
+        button: egui::PointerButton::Primary,
+        pressed: false,
+        modifiers: egui::Modifiers::NONE,
+    });
+    harness.run();
+    let hit = harness
+        .state()
+        .selected()
+        .expect("a triangle under the viewport centre");
+    harness.get_by_label(&format!("Selected triangle {}", hit.triangle));
+    // Independent check: the picked triangle, projected to the screen, contains the click.
+    let rect = harness.state().viewport_rect().unwrap();
+    let aspect = rect.width() / rect.height();
+    let clip_from_world = harness.state_mut().camera_mut().clip_from_world(aspect);
+    let corners: Vec<glam::Vec2> = basis.triangles[hit.triangle]
+        .iter()
+        .map(|&i| {
+            let ndc = clip_from_world.project_point3(basis.neutral[i as usize].as_vec3());
+            glam::Vec2::new(
+                rect.left() + (ndc.x + 1.0) * 0.5 * rect.width(),
+                rect.top() + (1.0 - ndc.y) * 0.5 * rect.height(),
+            )
+        })
+        .collect();
+    let p = glam::Vec2::new(centre.x, centre.y);
+    let side = |a: glam::Vec2, b: glam::Vec2| (b - a).perp_dot(p - a);
+    let s = [
+        side(corners[0], corners[1]),
+        side(corners[1], corners[2]),
+        side(corners[2], corners[0]),
+    ];
+    assert!(
+        s.iter().all(|v| *v >= -1e-3) || s.iter().all(|v| *v <= 1e-3),
+        "click {p} is outside the picked triangle {corners:?}"
+    );
 }

@@ -1,0 +1,223 @@
+//! Overlay lines drawn over the face: muscles (a colour each, with their direction), skull
+//! elements, feature boxes and the selected element. Built from the rig (canonical frame) and
+//! carried to the user's frame with `input_from_canonical`.
+
+use face_prep::{Box2, FaceRig};
+use glam::{DAffine3, DVec3};
+
+use crate::renderer::LineVertex;
+
+/// Which overlays to draw.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct OverlayOptions {
+    /// Muscle chains with arrow heads (start → end, the pull direction of a contraction).
+    pub muscles: bool,
+    /// Outlines of the skull (fixed) elements.
+    pub skull: bool,
+    /// The feature boxes (face, eyes, mouth, nose, skull), in the front plane.
+    pub boxes: bool,
+    /// Also show what lies behind the front face: back chains, back and rim elements.
+    pub whole_shell: bool,
+}
+
+impl Default for OverlayOptions {
+    fn default() -> Self {
+        OverlayOptions {
+            muscles: true,
+            skull: false,
+            boxes: false,
+            whole_shell: false,
+        }
+    }
+}
+
+/// Colour of muscle number `index` (ten distinct hues, then repeating).
+pub fn muscle_color(index: usize) -> [f32; 4] {
+    const PALETTE: [[f32; 3]; 10] = [
+        [0.90, 0.10, 0.10],
+        [0.10, 0.45, 0.95],
+        [0.10, 0.75, 0.20],
+        [0.95, 0.55, 0.05],
+        [0.60, 0.20, 0.85],
+        [0.05, 0.75, 0.75],
+        [0.95, 0.20, 0.65],
+        [0.55, 0.40, 0.10],
+        [0.35, 0.35, 0.35],
+        [0.75, 0.75, 0.05],
+    ];
+    let [r, g, b] = PALETTE[index % PALETTE.len()];
+    [r, g, b, 1.0]
+}
+
+/// Element centroids and vertices of a rig, in the user's frame.
+#[derive(Clone, Debug)]
+pub struct RigGeometry {
+    /// `input_from_canonical` (inverse of the rig's `canonical_from_input`).
+    pub input_from_canonical: DAffine3,
+    /// Shell vertices, user frame.
+    pub vertices: Vec<DVec3>,
+}
+
+impl RigGeometry {
+    /// Carries the rig's shell into the user's frame.
+    pub fn new(rig: &FaceRig) -> Self {
+        let input_from_canonical = rig.canonical_from_input.inverse();
+        let vertices = rig
+            .shell
+            .vertices
+            .iter()
+            .map(|p| input_from_canonical.transform_point3(*p))
+            .collect();
+        RigGeometry {
+            input_from_canonical,
+            vertices,
+        }
+    }
+
+    /// Corners of shell element `e` (user frame), if it exists.
+    pub fn corners(&self, rig: &FaceRig, e: u32) -> Option<[DVec3; 3]> {
+        let t = rig.shell.triangles.get(e as usize)?;
+        Some([
+            *self.vertices.get(t[0] as usize)?,
+            *self.vertices.get(t[1] as usize)?,
+            *self.vertices.get(t[2] as usize)?,
+        ])
+    }
+
+    fn centroid(&self, rig: &FaceRig, e: u32) -> Option<DVec3> {
+        self.corners(rig, e).map(|[a, b, c]| (a + b + c) / 3.0)
+    }
+}
+
+fn push_line(out: &mut Vec<LineVertex>, a: DVec3, b: DVec3, color: [f32; 4]) {
+    for p in [a, b] {
+        out.push(LineVertex {
+            position: p.as_vec3().to_array(),
+            color,
+        });
+    }
+}
+
+fn scaled(c: [f32; 4], k: f32, alpha: f32) -> [f32; 4] {
+    [c[0] * k, c[1] * k, c[2] * k, alpha]
+}
+
+fn chain_lines(
+    out: &mut Vec<LineVertex>,
+    rig: &FaceRig,
+    geo: &RigGeometry,
+    chain: &[u32],
+    color: [f32; 4],
+    alpha: f32,
+    view_normal: DVec3,
+) {
+    let points: Vec<DVec3> = chain.iter().filter_map(|&e| geo.centroid(rig, e)).collect();
+    let n = points.len();
+    for (i, w) in points.windows(2).enumerate() {
+        // Darker at the start, full colour at the end: the direction of the pull.
+        let k = 0.4 + 0.6 * (i + 1) as f32 / n.max(2) as f32;
+        push_line(out, w[0], w[1], scaled(color, k, alpha));
+    }
+    if let [.., a, b] = points[..] {
+        let d = b - a;
+        let len = d.length();
+        if len > 0.0 {
+            let dir = d / len;
+            let side = view_normal.cross(dir).normalize_or_zero();
+            let head = 0.5 * len;
+            for s in [-1.0, 1.0] {
+                push_line(
+                    out,
+                    b,
+                    b - head * dir + s * 0.5 * head * side,
+                    scaled(color, 1.0, alpha),
+                );
+            }
+        }
+    }
+}
+
+fn box_lines(out: &mut Vec<LineVertex>, geo: &RigGeometry, b: &Box2, z: f64, color: [f32; 4]) {
+    let c = [
+        DVec3::new(b.min.x, b.min.y, z),
+        DVec3::new(b.max.x, b.min.y, z),
+        DVec3::new(b.max.x, b.max.y, z),
+        DVec3::new(b.min.x, b.max.y, z),
+    ]
+    .map(|p| geo.input_from_canonical.transform_point3(p));
+    for i in 0..4 {
+        push_line(out, c[i], c[(i + 1) % 4], color);
+    }
+}
+
+/// All overlay lines for `rig` with `options`; `selected` (a shell element) is outlined in yellow.
+pub fn overlay_lines(
+    rig: &FaceRig,
+    geo: &RigGeometry,
+    options: &OverlayOptions,
+    selected: Option<u32>,
+) -> Vec<LineVertex> {
+    let mut out = Vec::new();
+    // Canonical +z (the face looks that way) in the user's frame: the plane of arrow heads.
+    let view_normal = geo
+        .input_from_canonical
+        .transform_vector3(DVec3::Z)
+        .normalize_or_zero();
+    if options.skull {
+        for &e in &rig.skull {
+            if let Some([a, b, c]) = geo.corners(rig, e) {
+                let col = [0.55, 0.65, 0.85, 0.7];
+                push_line(&mut out, a, b, col);
+                push_line(&mut out, b, c, col);
+                push_line(&mut out, c, a, col);
+            }
+        }
+    }
+    if options.muscles {
+        for (i, m) in rig.muscles.iter().enumerate() {
+            let color = muscle_color(m.kind.map_or(i, |k| k.index()));
+            chain_lines(&mut out, rig, geo, &m.front_chain, color, 1.0, view_normal);
+            if options.whole_shell {
+                chain_lines(&mut out, rig, geo, &m.back_chain, color, 0.5, -view_normal);
+            }
+        }
+    }
+    if options.boxes {
+        let z = rig
+            .shell
+            .vertices
+            .iter()
+            .take(rig.face_vertex_count)
+            .map(|p| p.z)
+            .fold(f64::NEG_INFINITY, f64::max);
+        let z = if z.is_finite() { z } else { 0.0 };
+        let b = &rig.boxes;
+        box_lines(&mut out, geo, &b.face, z, [0.95, 0.95, 0.95, 0.9]);
+        box_lines(&mut out, geo, &b.eye_l, z, [0.2, 0.9, 0.95, 0.9]);
+        box_lines(&mut out, geo, &b.eye_r, z, [0.2, 0.9, 0.95, 0.9]);
+        box_lines(&mut out, geo, &b.mouth, z, [0.95, 0.3, 0.85, 0.9]);
+        box_lines(&mut out, geo, &b.nose, z, [0.95, 0.9, 0.2, 0.9]);
+        box_lines(&mut out, geo, &b.skull, z, [0.95, 0.55, 0.15, 0.9]);
+    }
+    if let Some(e) = selected
+        && let Some([a, b, c]) = geo.corners(rig, e)
+    {
+        let col = [1.0, 0.9, 0.1, 1.0];
+        push_line(&mut out, a, b, col);
+        push_line(&mut out, b, c, col);
+        push_line(&mut out, c, a, col);
+    }
+    out
+}
+
+/// Names of the muscles whose front or back chain contains shell element `e`.
+pub fn muscles_of_element(rig: &FaceRig, e: u32) -> Vec<String> {
+    rig.muscles
+        .iter()
+        .filter(|m| m.front_chain.contains(&e) || m.back_chain.contains(&e))
+        .map(|m| {
+            m.kind
+                .map_or_else(|| m.name.clone(), |k| k.display_name().to_owned())
+        })
+        .collect()
+}
