@@ -2,7 +2,7 @@
 // Usage: node validate_gltf.cjs <dir holding node_modules/gltf-validator> <file.glb|file.gltf>
 const fs = require('fs');
 const path = require('path');
-const validator = require(path.join(process.argv[2], 'node_modules', 'gltf-validator'));
+const validator = require(path.resolve(process.argv[2], 'node_modules', 'gltf-validator'));
 const file = process.argv[3];
 validator
   .validateBytes(new Uint8Array(fs.readFileSync(file)), {

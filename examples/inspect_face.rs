@@ -1,0 +1,72 @@
+//! Prints per-muscle diagnostics of one face (chains, mouth-corner and brow responses on the
+//! simulated shell): `cargo run --release --example inspect_face -- assets/face.obj`.
+
+use face_prep::MuscleKind;
+use facebem::{Control, PipelineParams, build_face_model};
+
+fn main() -> anyhow::Result<()> {
+    let path = std::env::args()
+        .nth(1)
+        .ok_or_else(|| anyhow::anyhow!("usage: inspect_face FACE"))?;
+    let (mesh, _) = facebem::open::read_face(path.as_ref())?;
+    let mut params = PipelineParams::default();
+    if let Some(n) = std::env::args().nth(2) {
+        params.large_face.max_triangles = n.parse()?;
+        params.large_face.target_triangles = n.parse()?;
+    }
+    let prepared = facebem::prepare(&mesh, &params)?;
+    let si = prepared.rig.shell.self_intersections();
+    println!(
+        "simulated {} triangles, shell self-intersections: {} {:?}",
+        prepared.simulated.triangles.len(),
+        si.len(),
+        &si[..si.len().min(10)]
+    );
+    let worst = prepared
+        .simulated
+        .triangles
+        .iter()
+        .map(|t| {
+            let [a, b, c] = t.map(|i| prepared.simulated.vertices[i as usize]);
+            let area2 = (b - a).cross(c - a).length();
+            let l2 = (b - a)
+                .length_squared()
+                .max((c - b).length_squared())
+                .max((a - c).length_squared());
+            area2 / l2
+        })
+        .fold(f64::INFINITY, f64::min);
+    println!("worst front triangle 2*area/longest^2 = {worst:.2e}");
+    if std::env::args().nth(3).is_some() {
+        return Ok(());
+    }
+    let m = build_face_model(&mesh, &params, &Control::new())?;
+    let rig = &m.rig;
+    println!("face size {:.3}, boxes {:?}", rig.face_size, rig.boxes);
+    let mouth: Vec<usize> = rig.loops.mouth.iter().map(|&v| v as usize).collect();
+    let sv = &rig.shell.vertices;
+    let left = *mouth
+        .iter()
+        .max_by(|&&a, &&b| sv[a].x.total_cmp(&sv[b].x))
+        .unwrap();
+    let right = *mouth
+        .iter()
+        .min_by(|&&a, &&b| sv[a].x.total_cmp(&sv[b].x))
+        .unwrap();
+    println!("mouth corners: left {:.3} right {:.3}", sv[left], sv[right]);
+    for (k, mu) in rig.muscles.iter().enumerate() {
+        let c: Vec<String> = mu
+            .front_chain
+            .iter()
+            .map(|&e| format!("{:.2}", rig.shell.centroid(e as usize).truncate()))
+            .collect();
+        println!("{} front chain: {}", mu.name, c.join(" "));
+        let f = &m.shell_vertex_response[k];
+        println!(
+            "   contract: left corner {:.4}, right corner {:.4}",
+            -f[left], -f[right]
+        );
+    }
+    let _ = MuscleKind::ALL;
+    Ok(())
+}

@@ -1,0 +1,225 @@
+//! The `facebem` command line on a real face: rig → info → pose → export → muscles → rig with an
+//! edited muscle file, and bad input (non-zero exit, one line naming the problem).
+
+mod support;
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+use std::sync::OnceLock;
+
+fn facebem(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_facebem"))
+        .args(args)
+        .output()
+        .expect("run facebem")
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+fn stdout(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
+/// A temp dir holding `default.rig`, the rig of the MediaPipe face, computed once.
+fn rigged() -> &'static (tempfile::TempDir, PathBuf) {
+    static RIG: OnceLock<(tempfile::TempDir, PathBuf)> = OnceLock::new();
+    RIG.get_or_init(|| {
+        let dir = tempfile::tempdir().unwrap();
+        let rig = dir.path().join("default.rig");
+        let face = support::asset(support::FACES[0]);
+        let out = facebem(&["rig", face.to_str().unwrap(), "-o", rig.to_str().unwrap()]);
+        assert!(out.status.success(), "rig failed: {}", stderr(&out));
+        assert!(
+            stdout(&out).contains("1776 shell elements"),
+            "{}",
+            stdout(&out)
+        );
+        (dir, rig)
+    })
+}
+
+fn s(p: &Path) -> &str {
+    p.to_str().unwrap()
+}
+
+/// Asserts a failed run with exactly one stderr line containing every `needle`.
+fn assert_one_line_error(out: &Output, needles: &[&str]) {
+    assert!(
+        !out.status.success(),
+        "expected failure, got success: {}",
+        stdout(out)
+    );
+    let err = stderr(out);
+    let lines: Vec<&str> = err.lines().collect();
+    assert_eq!(lines.len(), 1, "expected one line, got: {err}");
+    for n in needles {
+        assert!(
+            lines[0].contains(n),
+            "{:?} does not mention {n:?}",
+            lines[0]
+        );
+    }
+}
+
+#[test]
+fn info_on_face_and_rig() {
+    let (_, rig) = rigged();
+    let out = facebem(&["info", s(rig)]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let text = stdout(&out);
+    for needle in [
+        "468 vertices, 852 triangles",
+        "loops (vertices): face 36, eye L 16, eye R 16, mouth 20",
+        "zygomaticus_major_l",
+        "skull",
+        "nu 0.45",
+    ] {
+        assert!(text.contains(needle), "info lacks {needle:?}:\n{text}");
+    }
+    let face = support::asset(support::FACES[0]);
+    let out = facebem(&["info", s(&face)]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert!(stdout(&out).contains("(face mesh)"));
+    assert!(stdout(&out).contains("muscles: 10"));
+}
+
+#[test]
+fn pose_writes_the_basis_pose_in_the_input_layout() {
+    let (dir, rig) = rigged();
+    let obj = dir.path().join("happy.obj");
+    let out = facebem(&[
+        "pose",
+        s(rig),
+        "--preset",
+        "happy",
+        "--set",
+        "zygomaticus_major_l=-0.8",
+        "-o",
+        s(&obj),
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let model = facebem::cache::load(rig).unwrap();
+    let mut sliders = facebem::presets::find("happy")
+        .unwrap()
+        .sliders_for(model.muscle_ids());
+    sliders[model.basis.muscle_index("zygomaticus_major_l").unwrap()] = -0.8;
+    let expected = model.pose(&sliders).unwrap();
+    let text = std::fs::read_to_string(&obj).unwrap();
+    let mesh = face_prep::FaceMesh::from_obj_str(&text).unwrap();
+    assert_eq!(mesh.vertices, expected);
+    // Same non-vertex lines as the input file.
+    let original = std::fs::read_to_string(support::asset(support::FACES[0])).unwrap();
+    let non_v = |t: &str| {
+        t.lines()
+            .filter(|l| !l.starts_with("v "))
+            .map(String::from)
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(non_v(&text), non_v(&original));
+}
+
+#[test]
+fn export_writes_valid_gltf() {
+    let (dir, rig) = rigged();
+    for name in ["cli.glb", "cli.gltf"] {
+        let path = dir.path().join(name);
+        let out = facebem(&["export", s(rig), "--gltf", s(&path)]);
+        assert!(out.status.success(), "{}", stderr(&out));
+        assert!(
+            stdout(&out).contains("28 morph targets"),
+            "{}",
+            stdout(&out)
+        );
+        support::assert_valid(&path);
+    }
+}
+
+#[test]
+fn muscles_file_round_trips_into_rig() {
+    let (dir, _) = rigged();
+    let face = support::asset(support::FACES[0]);
+    let file = dir.path().join("face.muscles");
+    let out = facebem(&["muscles", s(&face), "-o", s(&file)]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let text = std::fs::read_to_string(&file).unwrap();
+    assert!(text.contains("[Data]"), "{text}");
+    // Edit: keep only the first muscle block (Frontalis L), then rig with it.
+    let blocks: Vec<&str> = text.split_inclusive('\n').collect();
+    let second = blocks
+        .iter()
+        .enumerate()
+        .filter(|(_, l)| l.starts_with("[Name]"))
+        .nth(1)
+        .map(|(i, _)| i)
+        .unwrap();
+    let edited = dir.path().join("one.muscles");
+    std::fs::write(&edited, blocks[..second].concat()).unwrap();
+    let rig = dir.path().join("one.rig");
+    let out = facebem(&["rig", s(&face), "-o", s(&rig), "--muscles", s(&edited)]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let model = facebem::cache::load(&rig).unwrap();
+    assert_eq!(model.muscle_ids(), ["frontalis_l"]);
+}
+
+#[test]
+fn bad_input_fails_with_one_line_naming_the_problem() {
+    let (dir, rig) = rigged();
+    let out_obj = dir.path().join("x.obj");
+    // Missing file.
+    let out = facebem(&["info", "/nonexistent/face.obj"]);
+    assert_one_line_error(&out, &["/nonexistent/face.obj"]);
+    assert_eq!(
+        stderr(&out).matches("os error").count(),
+        1,
+        "cause repeated: {}",
+        stderr(&out)
+    );
+    // A mesh with one boundary loop instead of four.
+    let tri = dir.path().join("triangle.obj");
+    std::fs::write(&tri, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
+    let out = facebem(&["rig", s(&tri), "-o", s(&dir.path().join("t.rig"))]);
+    assert_one_line_error(&out, &["triangle.obj", "loop"]);
+    // Garbage where a rig is expected.
+    let junk = dir.path().join("junk.rig");
+    std::fs::write(&junk, b"FACEBEM\x1a\x01\x00\x00\x00 not really").unwrap();
+    let out = facebem(&["pose", s(&junk), "-o", s(&out_obj)]);
+    assert_one_line_error(&out, &["junk.rig", "truncated"]);
+    // Slider out of range, unknown muscle, unknown preset, malformed --set.
+    let out = facebem(&[
+        "pose",
+        s(rig),
+        "--set",
+        "zygomaticus_major_l=-1.5",
+        "-o",
+        s(&out_obj),
+    ]);
+    assert_one_line_error(&out, &["-1.5", "outside [-1, 1]"]);
+    let out = facebem(&["pose", s(rig), "--set", "buccinator=0.5", "-o", s(&out_obj)]);
+    assert_one_line_error(&out, &["unknown muscle", "buccinator"]);
+    let out = facebem(&["pose", s(rig), "--preset", "grumpy", "-o", s(&out_obj)]);
+    assert_one_line_error(&out, &["unknown preset", "grumpy"]);
+    let out = facebem(&["pose", s(rig), "--set", "frontalis_l", "-o", s(&out_obj)]);
+    assert_one_line_error(&out, &["frontalis_l", "muscle_id=value"]);
+    // Muscle file with an element that does not exist.
+    let bad = dir.path().join("bad.muscles");
+    std::fs::write(&bad, "[Name]\nFrontalis L\n[Size]\n1\n[Data]\n999999\n").unwrap();
+    let face = support::asset(support::FACES[0]);
+    let out = facebem(&[
+        "rig",
+        s(&face),
+        "-o",
+        s(&dir.path().join("b.rig")),
+        "--muscles",
+        s(&bad),
+    ]);
+    assert_one_line_error(&out, &["bad.muscles", "999999"]);
+    // Unwritable output.
+    let out = facebem(&["export", s(rig), "--gltf", "/nonexistent/dir/out.glb"]);
+    assert_one_line_error(&out, &["/nonexistent/dir/out.glb"]);
+    assert!(
+        !out_obj.exists(),
+        "a failed pose must not leave a file behind"
+    );
+}

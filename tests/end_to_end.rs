@@ -1,0 +1,474 @@
+//! End-to-end tests over every face in `assets/`: physics sanity of the muscle responses,
+//! exactness of posing, exports (glTF-Validator + re-read), cache round trip and rejection.
+//!
+//! Each face's model is computed once per test binary (default parameters; the 2500-, 4595- and
+//! 13 120-triangle faces go through the simplified large-face path) and shared by its tests.
+
+mod support;
+
+use std::sync::OnceLock;
+
+use face_prep::{ElementTag, MuscleKind};
+use facebem::cache::{self, CacheError, ContainerError};
+use facebem::export::GltfParams;
+use facebem::{Control, FaceModel, PipelineParams, build_face_model};
+use glam::{DMat3, DVec3};
+
+static MODELS: [OnceLock<FaceModel>; 4] = [const { OnceLock::new() }; 4];
+
+fn model(face: usize) -> &'static FaceModel {
+    MODELS[face].get_or_init(|| {
+        let path = support::asset(support::FACES[face]);
+        let (mesh, obj) = facebem::open::read_face(&path).expect("bundled face loads");
+        let mut model = build_face_model(&mesh, &PipelineParams::default(), &Control::new())
+            .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        model.obj_source = obj;
+        eprintln!(
+            "{}: {} front triangles, {} simulated, {} shell elements, solve {:.1} s",
+            support::FACES[face],
+            model.report.input_triangles,
+            model.report.simulated_triangles,
+            model.report.shell_elements,
+            model.report.solve_seconds
+        );
+        model
+    })
+}
+
+fn muscle(model: &FaceModel, kind: MuscleKind) -> usize {
+    model
+        .basis
+        .muscle_index(kind.id())
+        .unwrap_or_else(|| panic!("muscle {} missing", kind.id()))
+}
+
+/// Linear part of canonical_from_input (displacements are vectors).
+fn to_canonical(model: &FaceModel) -> DMat3 {
+    model.rig.canonical_from_input.matrix3
+}
+
+/// Canonical positions of the user's vertices.
+fn canonical_positions(model: &FaceModel) -> Vec<DVec3> {
+    model
+        .mesh
+        .vertices
+        .iter()
+        .map(|&p| model.rig.canonical_from_input.transform_point3(p))
+        .collect()
+}
+
+/// Index of the user vertex closest to canonical point `p`.
+fn nearest(points: &[DVec3], p: DVec3) -> usize {
+    (0..points.len())
+        .min_by(|&a, &b| {
+            points[a]
+                .distance_squared(p)
+                .total_cmp(&points[b].distance_squared(p))
+        })
+        .unwrap_or(0)
+}
+
+/// Canonical displacement of user vertex `v` for slider `s` of muscle `k`.
+fn canon_disp(model: &FaceModel, k: usize, v: usize, s: f64) -> DVec3 {
+    to_canonical(model) * (s * model.basis.displacements[k][v])
+}
+
+fn skull_does_not_move(face: usize) {
+    let m = model(face);
+    assert!(!m.rig.skull.is_empty());
+    for (k, field) in m.shell_element_response.iter().enumerate() {
+        for &e in &m.rig.skull {
+            assert_eq!(
+                field[e as usize],
+                DVec3::ZERO,
+                "muscle {k}, skull element {e}"
+            );
+        }
+    }
+    // Shell vertices surrounded by skull elements only (the thickened rim's back contour and
+    // the inside of the forehead) do not move at all.
+    let skull: std::collections::HashSet<u32> = m.rig.skull.iter().copied().collect();
+    let mut only_skull = vec![true; m.rig.shell.vertices.len()];
+    for (e, t) in m.rig.shell.triangles.iter().enumerate() {
+        if !skull.contains(&(e as u32)) {
+            for &v in t {
+                only_skull[v as usize] = false;
+            }
+        }
+    }
+    let fixed: Vec<usize> = (0..only_skull.len()).filter(|&v| only_skull[v]).collect();
+    assert!(fixed.len() > 10, "only {} skull-only vertices", fixed.len());
+    for field in &m.shell_vertex_response {
+        for &v in &fixed {
+            assert_eq!(field[v], DVec3::ZERO, "skull vertex {v}");
+        }
+    }
+    // The skull is back and rim only: front elements are never fixed.
+    assert!(
+        m.rig
+            .skull
+            .iter()
+            .all(|&e| m.rig.shell.tags[e as usize] != ElementTag::Front)
+    );
+}
+
+fn zygomaticus_l_pulls_left_corner_up_and_out(face: usize) {
+    let m = model(face);
+    let k = muscle(m, MuscleKind::ZygomaticusMajorL);
+    let canon = canonical_positions(m);
+    let mouth: Vec<DVec3> = m
+        .rig
+        .loops
+        .mouth
+        .iter()
+        .map(|&v| m.rig.shell.vertices[v as usize])
+        .collect();
+    let left = mouth
+        .iter()
+        .copied()
+        .max_by(|a, b| a.x.total_cmp(&b.x))
+        .unwrap();
+    let right = mouth
+        .iter()
+        .copied()
+        .min_by(|a, b| a.x.total_cmp(&b.x))
+        .unwrap();
+    let (vl, vr) = (nearest(&canon, left), nearest(&canon, right));
+    let dl = canon_disp(m, k, vl, -1.0);
+    let dr = canon_disp(m, k, vr, -1.0);
+    eprintln!(
+        "{}: zyg L contract: left corner {dl:.4}, right corner {dr:.4}",
+        support::FACES[face]
+    );
+    assert!(dl.x > 0.0 && dl.y > 0.0, "left corner moved {dl}");
+    // "Far more": at least 5x the motion of the opposite corner.
+    assert!(dl.length() > 5.0 * dr.length(), "left {dl} vs right {dr}");
+}
+
+fn frontalis_contraction_raises_brow(face: usize) {
+    let m = model(face);
+    let canon = canonical_positions(m);
+    // Brow band: above the eye box, as wide as it, one eye-box height high.
+    let band = |eye: face_prep::Box2| -> Vec<usize> {
+        (0..canon.len())
+            .filter(|&v| {
+                let p = canon[v];
+                p.x >= eye.min.x
+                    && p.x <= eye.max.x
+                    && p.y > eye.max.y
+                    && p.y < eye.max.y + eye.height()
+            })
+            .collect()
+    };
+    let mean_dy = |k: usize, band: &[usize]| -> f64 {
+        band.iter()
+            .map(|&v| canon_disp(m, k, v, -1.0).y)
+            .sum::<f64>()
+            / band.len() as f64
+    };
+    let (band_l, band_r) = (band(m.rig.boxes.eye_l), band(m.rig.boxes.eye_r));
+    assert!(!band_l.is_empty() && !band_r.is_empty(), "no brow vertices");
+    for (kind, own, other) in [
+        (MuscleKind::FrontalisL, &band_l, &band_r),
+        (MuscleKind::FrontalisR, &band_r, &band_l),
+    ] {
+        let k = muscle(m, kind);
+        let (up, across) = (mean_dy(k, own), mean_dy(k, other));
+        eprintln!(
+            "{} {}: brow mean dy {up:.4} (other brow {across:.4})",
+            support::FACES[face],
+            kind.id()
+        );
+        // Contraction raises its own brow, and more than twice as much as the other one.
+        assert!(up > 0.0, "{}: own brow mean dy {up}", kind.id());
+        assert!(
+            up > 2.0 * across.abs(),
+            "{}: own brow {up} vs other brow {across}",
+            kind.id()
+        );
+    }
+}
+
+fn pose_is_linear(face: usize) {
+    let m = model(face);
+    let n = m.basis.muscle_count();
+    let a: Vec<f64> = (0..n).map(|k| 0.5 * ((k as f64) * 0.7).sin()).collect();
+    let b: Vec<f64> = (0..n)
+        .map(|k| 0.4 * ((k as f64) * 1.3 + 0.5).cos())
+        .collect();
+    let ab: Vec<f64> = a.iter().zip(&b).map(|(x, y)| x + y).collect();
+    let (pa, pb, pab) = (
+        m.pose(&a).unwrap(),
+        m.pose(&b).unwrap(),
+        m.pose(&ab).unwrap(),
+    );
+    let size = m.rig.face_size;
+    for v in 0..pa.len() {
+        let lhs = pab[v] - m.basis.neutral[v];
+        let rhs = (pa[v] - m.basis.neutral[v]) + (pb[v] - m.basis.neutral[v]);
+        assert!(
+            (lhs - rhs).length() <= 1e-12 * size,
+            "vertex {v}: {lhs} vs {rhs}"
+        );
+    }
+    // Zero sliders give the neutral face exactly.
+    assert_eq!(m.pose(&vec![0.0; n]).unwrap(), m.basis.neutral);
+}
+
+fn obj_export_keeps_the_input_layout(face: usize) {
+    let m = model(face);
+    let sliders = facebem::presets::find("laugh")
+        .unwrap()
+        .sliders_for(m.muscle_ids());
+    let text = m.obj_text(&sliders).unwrap();
+    let original = m.obj_source.as_deref().unwrap();
+    let non_v = |s: &str| {
+        s.lines()
+            .filter(|l| !l.starts_with("v "))
+            .map(str::to_string)
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(non_v(&text), non_v(original), "non-vertex lines changed");
+    let posed = m.pose(&sliders).unwrap();
+    let reread = face_prep::FaceMesh::from_obj_str(&text).unwrap();
+    assert_eq!(reread.triangles, m.mesh.triangles);
+    for (v, p) in reread.vertices.iter().enumerate() {
+        assert_eq!(*p, posed[v], "vertex {v} does not round-trip exactly");
+    }
+}
+
+fn gltf_exports_validate_and_match(face: usize) {
+    let m = model(face);
+    let dir = tempfile::tempdir().unwrap();
+    for name in ["face.glb", "face.gltf"] {
+        let path = dir.path().join(name);
+        m.write_gltf(&path, &GltfParams::default()).unwrap();
+        support::assert_valid(&path);
+        let (doc, buffers, _) = gltf::import(&path).unwrap();
+        let mesh = doc.meshes().next().unwrap();
+        let prim = mesh.primitives().next().unwrap();
+        let reader = prim.reader(|b| Some(&buffers[b.index()]));
+        let positions: Vec<[f32; 3]> = reader.read_positions().unwrap().collect();
+        assert_eq!(positions.len(), m.basis.neutral.len());
+        for (p, q) in positions.iter().zip(&m.basis.neutral) {
+            assert_eq!(*p, q.as_vec3().to_array());
+        }
+        let targets: Vec<Vec<[f32; 3]>> = reader
+            .read_morph_targets()
+            .map(|(p, _, _)| p.unwrap().collect())
+            .collect();
+        assert_eq!(
+            targets.len(),
+            2 * m.basis.muscle_count() + facebem::presets::ALL.len() - 1
+        );
+        for k in 0..m.basis.muscle_count() {
+            for (v, d) in m.basis.displacements[k].iter().enumerate() {
+                assert_eq!(targets[2 * k][v], (-*d).as_vec3().to_array());
+                assert_eq!(targets[2 * k + 1][v], d.as_vec3().to_array());
+            }
+        }
+    }
+}
+
+fn cache_round_trip_and_rejections(face: usize) {
+    let m = model(face);
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("face.rig");
+    cache::save(&path, m).unwrap();
+    let back = cache::load_for(&path, &m.mesh, &m.params).unwrap();
+    // Bit-exact: the re-encoded file is identical, and the basis compares equal bit for bit.
+    assert_eq!(
+        cache::to_bytes(&back).unwrap(),
+        std::fs::read(&path).unwrap()
+    );
+    for (f, g) in back.basis.displacements.iter().zip(&m.basis.displacements) {
+        for (a, b) in f.iter().zip(g) {
+            assert_eq!(
+                a.to_array().map(f64::to_bits),
+                b.to_array().map(f64::to_bits)
+            );
+        }
+    }
+    assert_eq!(back.rig, m.rig);
+    assert_eq!(back.obj_source, m.obj_source);
+
+    // One flipped bit in the payload: rejected as corrupt.
+    let mut bytes = std::fs::read(&path).unwrap();
+    let mid = bytes.len() / 2;
+    bytes[mid] ^= 0x01;
+    let corrupt = dir.path().join("corrupt.rig");
+    std::fs::write(&corrupt, &bytes).unwrap();
+    assert!(matches!(
+        cache::load(&corrupt),
+        Err(CacheError::Container {
+            source: ContainerError::Checksum,
+            ..
+        })
+    ));
+    // Truncated file.
+    std::fs::write(&corrupt, &bytes[..mid]).unwrap();
+    assert!(matches!(
+        cache::load(&corrupt),
+        Err(CacheError::Container {
+            source: ContainerError::Truncated { .. },
+            ..
+        })
+    ));
+    // A cache for another mesh: the other faces' meshes, and this mesh moved by one ulp.
+    let other = model(if face == 0 { 1 } else { 0 });
+    assert!(matches!(
+        cache::load_for(&path, &other.mesh, &m.params),
+        Err(CacheError::OtherMesh { .. })
+    ));
+    let mut nudged = m.mesh.clone();
+    nudged.vertices[0].x = f64::from_bits(nudged.vertices[0].x.to_bits() + 1);
+    assert!(matches!(
+        cache::load_for(&path, &nudged, &m.params),
+        Err(CacheError::OtherMesh { .. })
+    ));
+    // Other parameters.
+    let params = PipelineParams {
+        poisson: 0.49,
+        ..m.params.clone()
+    };
+    assert!(matches!(
+        cache::load_for(&path, &m.mesh, &params),
+        Err(CacheError::OtherParams { .. })
+    ));
+}
+
+macro_rules! face_tests {
+    ($name:ident, $face:expr) => {
+        mod $name {
+            #[test]
+            fn skull_does_not_move() {
+                super::skull_does_not_move($face);
+            }
+            #[test]
+            fn zygomaticus_l_pulls_left_corner_up_and_out() {
+                super::zygomaticus_l_pulls_left_corner_up_and_out($face);
+            }
+            #[test]
+            fn frontalis_contraction_raises_brow() {
+                super::frontalis_contraction_raises_brow($face);
+            }
+            #[test]
+            fn pose_is_linear() {
+                super::pose_is_linear($face);
+            }
+            #[test]
+            fn obj_export_keeps_the_input_layout() {
+                super::obj_export_keeps_the_input_layout($face);
+            }
+            #[test]
+            fn gltf_exports_validate_and_match() {
+                super::gltf_exports_validate_and_match($face);
+            }
+            #[test]
+            fn cache_round_trip_and_rejections() {
+                super::cache_round_trip_and_rejections($face);
+            }
+        }
+    };
+}
+
+face_tests!(mediapipe, 0);
+face_tests!(ict_2500, 1);
+face_tests!(lee_perry_smith, 2);
+face_tests!(ict_13k, 3);
+
+/// On the symmetric MediaPipe face, each left muscle's response is the mirror image (x → −x)
+/// of its right partner's, vertex by mirrored vertex.
+#[test]
+fn mediapipe_left_and_right_responses_mirror() {
+    let m = model(0);
+    let canon = canonical_positions(m);
+    let mirror_of: Vec<usize> = canon
+        .iter()
+        .map(|p| nearest(&canon, DVec3::new(-p.x, p.y, p.z)))
+        .collect();
+    let asym = canon
+        .iter()
+        .zip(&mirror_of)
+        .map(|(p, &q)| p.distance(DVec3::new(-canon[q].x, canon[q].y, canon[q].z)))
+        .fold(0.0, f64::max);
+    assert!(asym < 1e-3 * m.rig.face_size, "mesh asymmetry {asym}");
+    let flip = DVec3::new(-1.0, 1.0, 1.0);
+    for left in MuscleKind::ALL
+        .into_iter()
+        .filter(|k| k.side() == face_prep::Side::Left)
+    {
+        let (kl, kr) = (muscle(m, left), muscle(m, left.mirror()));
+        let scale = (0..canon.len())
+            .map(|v| canon_disp(m, kl, v, 1.0).length())
+            .fold(0.0, f64::max);
+        let err = (0..canon.len())
+            .map(|v| {
+                (canon_disp(m, kl, v, 1.0) * flip - canon_disp(m, kr, mirror_of[v], 1.0)).length()
+            })
+            .fold(0.0, f64::max);
+        eprintln!(
+            "{}: max mirror error {err:.2e} of max displacement {scale:.3}",
+            left.id()
+        );
+        assert!(
+            err <= 0.02 * scale,
+            "{}: mirror error {err} vs scale {scale}",
+            left.id()
+        );
+    }
+}
+
+/// Cancelling before the start stops the pipeline with `Cancelled`.
+#[test]
+fn cancelled_control_stops_the_pipeline() {
+    let (mesh, _) = facebem::open::read_face(&support::asset(support::FACES[0])).unwrap();
+    let control = Control::new();
+    control.cancel();
+    let err = build_face_model(&mesh, &PipelineParams::default(), &control).unwrap_err();
+    assert!(matches!(err, facebem::PipelineError::Cancelled), "{err}");
+}
+
+/// Progress reaches the caller for every stage, in order.
+#[test]
+fn progress_reports_every_stage_in_order() {
+    use facebem::Stage;
+    use std::sync::{Arc, Mutex};
+    let (mesh, _) = facebem::open::read_face(&support::asset(support::FACES[0])).unwrap();
+    let stages = Arc::new(Mutex::new(Vec::<Stage>::new()));
+    let log = stages.clone();
+    let control = Control::new().with_progress(move |p| {
+        let mut s = log.lock().unwrap();
+        if s.last() != Some(&p.stage) {
+            s.push(p.stage);
+        }
+    });
+    let model = build_face_model(&mesh, &PipelineParams::default(), &control).unwrap();
+    assert_eq!(model.basis.muscle_count(), 10);
+    let seen = stages.lock().unwrap().clone();
+    assert_eq!(
+        seen,
+        vec![
+            Stage::Prep,
+            Stage::Assembly,
+            Stage::Factorisation,
+            Stage::Solves,
+            Stage::Transfer
+        ]
+    );
+}
+
+/// Cancelling while the BEM runs (when the factorisation starts) stops it with `Cancelled`.
+#[test]
+fn cancel_during_the_solve_stops_it() {
+    let (mesh, _) = facebem::open::read_face(&support::asset(support::FACES[0])).unwrap();
+    let base = Control::new();
+    let handle = base.clone();
+    let control = base.with_progress(move |p| {
+        if p.stage == facebem::Stage::Factorisation {
+            handle.cancel();
+        }
+    });
+    let err = build_face_model(&mesh, &PipelineParams::default(), &control).unwrap_err();
+    assert!(matches!(err, facebem::PipelineError::Cancelled), "{err}");
+}
