@@ -30,6 +30,14 @@ pub struct RigParams {
     /// Spacing of the rays cast along a muscle-definer, as a fraction of the median front edge
     /// length. Default 0.25.
     pub ray_spacing: f64,
+    /// Distance from the eye and mouth contours, fraction of face size, over which the back
+    /// face's offset grows from zero (knife edge) to `offset`. Default 0.05.
+    pub taper: f64,
+    /// Laplacian smoothing iterations of the back face's displacement field. Default 10.
+    pub smoothing_iterations: usize,
+    /// Rounds of local repair of self-intersections of the back face (each round halves the
+    /// offset of the back vertices of intersecting elements). Default 8.
+    pub repair_rounds: usize,
 }
 
 impl Default for RigParams {
@@ -39,6 +47,9 @@ impl Default for RigParams {
             thickness: 0.015,
             offset_clamp: 0.45,
             ray_spacing: 0.25,
+            taper: 0.05,
+            smoothing_iterations: 10,
+            repair_rounds: 8,
         }
     }
 }
@@ -59,6 +70,7 @@ impl RigParams {
         positive("offset", self.offset)?;
         positive("thickness", self.thickness)?;
         positive("ray_spacing", self.ray_spacing)?;
+        positive("taper", self.taper)?;
         if !(self.offset_clamp > 0.0 && self.offset_clamp <= 1.0) {
             return Err(PrepError::InvalidParam {
                 name: "offset_clamp",
@@ -142,6 +154,9 @@ impl FaceRig {
                 offset: params.offset * face_size,
                 thickness: params.thickness * face_size,
                 clamp_fraction: params.offset_clamp,
+                taper: params.taper * face_size,
+                smoothing_iterations: params.smoothing_iterations,
+                repair_rounds: params.repair_rounds,
             },
         );
         let mut rig = FaceRig {

@@ -49,6 +49,14 @@ pub struct ShellDims {
     /// Each back vertex moves at most this fraction of the distance, along its inward normal,
     /// to the front surface (keeps the back face inside deep concavities such as nostrils).
     pub clamp_fraction: f64,
+    /// Distance (along mesh edges) from the eye and mouth contours over which the offset
+    /// grows from zero to `offset` (smoothstep).
+    pub taper: f64,
+    /// Laplacian smoothing iterations applied to the back-face displacement field.
+    pub smoothing_iterations: usize,
+    /// Rounds of local repair: back/rim vertices of intersecting elements get half their
+    /// offset per round.
+    pub repair_rounds: usize,
 }
 
 /// Area-weighted vertex normals of a triangle mesh (+z where undefined).
@@ -68,7 +76,7 @@ impl Shell {
     /// Builds the shell from the face (canonical frame) and its classified loops.
     pub fn build(vertices: &[DVec3], triangles: &[[u32; 3]], loops: &FaceLoops, dims: ShellDims) -> Shell {
         let n = vertices.len();
-        let normals = vertex_normals(vertices, triangles);
+        let normals = offset_directions(vertices, triangles);
         let front_tris: Vec<[DVec3; 3]> = triangles.iter().map(|t| t.map(|i| vertices[i as usize])).collect();
         let front_bvh = TriangleBvh::new(&front_tris);
         // Inward move of a point, clamped by the distance to the front surface along −normal.
@@ -92,19 +100,73 @@ impl Shell {
         for &v in &loops.face {
             kind[v as usize] = 2;
         }
+        let adjacency = vertex_adjacency(n, triangles);
+        let dist = contour_distance(vertices, &adjacency, &kind);
+        let taper = |d: f64| {
+            let s = if dims.taper > 0.0 { (d / dims.taper).min(1.0) } else { 1.0 };
+            s * s * (3.0 - 2.0 * s)
+        };
+        // Target inward displacement: the full offset away from the eyes and mouth, tapered to
+        // zero at their knife edges (smoothstep over `taper`), the thickness at the outer contour.
+        let mut disp: Vec<DVec3> = (0..n)
+            .map(|v| match kind[v] {
+                1 => DVec3::ZERO,
+                2 => -normals[v] * dims.thickness,
+                _ => -normals[v] * dims.offset * taper(dist[v]),
+            })
+            .collect();
+        // Laplacian smoothing of the displacement of interior vertices: irons out folds where
+        // vertex normals turn fast (mouth corners, nostril rims, lips).
+        for _ in 0..dims.smoothing_iterations {
+            let prev = disp.clone();
+            for v in 0..n {
+                if kind[v] == 0 && !adjacency[v].is_empty() {
+                    let avg = adjacency[v].iter().map(|&u| prev[u as usize]).sum::<DVec3>() / adjacency[v].len() as f64;
+                    disp[v] = 0.5 * (prev[v] + avg);
+                }
+            }
+        }
+        // Every moved vertex must go behind all of its incident front triangles; where the
+        // smoothed field does not, fall back to the robust offset direction.
+        let mut incident: Vec<Vec<usize>> = vec![Vec::new(); n];
+        for (ti, t) in triangles.iter().enumerate() {
+            for &i in t {
+                incident[i as usize].push(ti);
+            }
+        }
+        let tri_normal = |ti: usize| {
+            let p = front_tris[ti];
+            (p[1] - p[0]).cross(p[2] - p[0]).normalize_or_zero()
+        };
+        for v in 0..n {
+            let len = disp[v].length();
+            if kind[v] == 1 || len == 0.0 {
+                continue;
+            }
+            let worst = incident[v].iter().map(|&t| tri_normal(t).dot(disp[v]) / len).fold(f64::NEG_INFINITY, f64::max);
+            if worst > -0.1 {
+                disp[v] = -normals[v] * len;
+            }
+        }
         let mut out_v = vertices.to_vec();
+        let mut anchor = vertices.to_vec();
+        let mut robust_dir = normals.clone();
         let mut back_of = vec![u32::MAX; n];
         let new_back: Vec<(usize, DVec3)> = (0..n)
             .into_par_iter()
             .filter(|&v| kind[v] != 1)
             .map(|v| {
-                let d = if kind[v] == 2 { dims.thickness } else { dims.offset };
-                (v, moved(vertices[v], normals[v], d))
+                let d = disp[v];
+                let len = d.length();
+                let dir = d.try_normalize().unwrap_or(-normals[v]);
+                (v, moved(vertices[v], -dir, len))
             })
             .collect();
         for (v, p) in new_back {
             back_of[v] = out_v.len() as u32;
             out_v.push(p);
+            anchor.push(vertices[v]);
+            robust_dir.push(normals[v]);
         }
         for v in 0..n {
             if kind[v] == 1 {
@@ -130,7 +192,9 @@ impl Shell {
                     chord_mid.entry(key).or_insert_with(|| {
                         let m = 0.5 * (vertices[a as usize] + vertices[b as usize]);
                         let nm = (normals[a as usize] + normals[b as usize]).try_normalize().unwrap_or(DVec3::Z);
-                        out_v.push(moved(m, nm, dims.offset));
+                        out_v.push(moved(m, nm, dims.offset * taper(0.5 * vertices[a as usize].distance(vertices[b as usize]))));
+                        anchor.push(m);
+                        robust_dir.push(nm);
                         (out_v.len() - 1) as u32
                     });
                 }
@@ -176,11 +240,48 @@ impl Shell {
             tags.extend([ElementTag::Rim, ElementTag::Rim]);
             source.extend([src, src]);
         }
-        Shell {
+        let mut shell = Shell {
             vertices: out_v,
             triangles: out_t,
             tags,
             source_triangle: source,
+        };
+        shell.repair_back_intersections(n, &anchor, &robust_dir, dims.repair_rounds);
+        shell
+    }
+
+    /// Where back or rim elements intersect another element, their moved vertices first switch
+    /// to the robust offset direction (`robust_dir`, outward) and then get half their offset
+    /// per round (toward their anchors on the front face), for at most `rounds` rounds.
+    /// Intersections between two front elements belong to the input and are left alone.
+    fn repair_back_intersections(&mut self, n_front: usize, anchor: &[DVec3], robust_dir: &[DVec3], rounds: usize) {
+        let mut disp: Vec<DVec3> = self.vertices.iter().zip(anchor).map(|(p, a)| *p - *a).collect();
+        let mut redirected = vec![false; self.vertices.len()];
+        let mut scale = vec![1.0f64; self.vertices.len()];
+        for _ in 0..rounds {
+            let bad = self.self_intersections();
+            let mut shrink = std::collections::HashSet::new();
+            for pair in bad {
+                for e in pair {
+                    if self.tags[e as usize] != ElementTag::Front {
+                        shrink.extend(self.triangles[e as usize].iter().copied().filter(|&v| v as usize >= n_front));
+                    }
+                }
+            }
+            if shrink.is_empty() {
+                return;
+            }
+            for v in shrink {
+                let v = v as usize;
+                if !redirected[v] {
+                    redirected[v] = true;
+                    disp[v] = -robust_dir[v] * disp[v].length();
+                } else {
+                    scale[v] *= 0.5;
+                }
+                let v = v as u32;
+                self.vertices[v as usize] = anchor[v as usize] + disp[v as usize] * scale[v as usize];
+            }
         }
     }
 
@@ -268,4 +369,84 @@ impl Shell {
         pairs.sort_unstable();
         pairs
     }
+}
+
+/// Offset directions: per vertex, the unit outward direction that is most consistently
+/// "outward" for all incident triangles. Starts from the area-weighted normal; where some incident
+/// triangle disagrees with it (dot < 0.3, folds at mouth corners), the candidate among the
+/// area-weighted normal, the unit-weighted normal and each incident triangle normal with the
+/// largest minimum dot product over the incident triangles is taken instead.
+pub fn offset_directions(vertices: &[DVec3], triangles: &[[u32; 3]]) -> Vec<DVec3> {
+    let area_weighted = vertex_normals(vertices, triangles);
+    let mut incident: Vec<Vec<DVec3>> = vec![Vec::new(); vertices.len()];
+    for t in triangles {
+        let p = t.map(|i| vertices[i as usize]);
+        if let Some(nt) = (p[1] - p[0]).cross(p[2] - p[0]).try_normalize() {
+            for &i in t {
+                incident[i as usize].push(nt);
+            }
+        }
+    }
+    area_weighted
+        .into_iter()
+        .zip(&incident)
+        .map(|(n, faces)| {
+            let worst = |c: DVec3| faces.iter().map(|f| f.dot(c)).fold(f64::INFINITY, f64::min);
+            if faces.is_empty() || worst(n) >= 0.3 {
+                return n;
+            }
+            let unit = faces.iter().copied().sum::<DVec3>().try_normalize().unwrap_or(n);
+            std::iter::once(n)
+                .chain(std::iter::once(unit))
+                .chain(faces.iter().copied())
+                .max_by(|a, b| worst(*a).total_cmp(&worst(*b)))
+                .unwrap_or(n)
+        })
+        .collect()
+}
+
+/// Neighbouring vertices of every vertex (sorted, no repeats).
+pub fn vertex_adjacency(n: usize, triangles: &[[u32; 3]]) -> Vec<Vec<u32>> {
+    let mut adj = vec![Vec::new(); n];
+    for t in triangles {
+        for k in 0..3 {
+            adj[t[k] as usize].push(t[(k + 1) % 3]);
+            adj[t[(k + 1) % 3] as usize].push(t[k]);
+        }
+    }
+    for a in &mut adj {
+        a.sort_unstable();
+        a.dedup();
+    }
+    adj
+}
+
+/// Shortest distance along mesh edges from every vertex to the nearest vertex with
+/// `kind == 1` (eye or mouth contour); infinite where unreachable.
+fn contour_distance(vertices: &[DVec3], adjacency: &[Vec<u32>], kind: &[u8]) -> Vec<f64> {
+    use std::cmp::Reverse;
+    use std::collections::BinaryHeap;
+    let mut dist = vec![f64::INFINITY; vertices.len()];
+    let mut heap = BinaryHeap::new();
+    for (v, &k) in kind.iter().enumerate() {
+        if k == 1 {
+            dist[v] = 0.0;
+            heap.push(Reverse((0u64, v as u32)));
+        }
+    }
+    // Non-negative f64 bit patterns order like the values.
+    while let Some(Reverse((d_bits, v))) = heap.pop() {
+        let d = f64::from_bits(d_bits);
+        if d > dist[v as usize] {
+            continue;
+        }
+        for &u in &adjacency[v as usize] {
+            let nd = d + vertices[v as usize].distance(vertices[u as usize]);
+            if nd < dist[u as usize] {
+                dist[u as usize] = nd;
+                heap.push(Reverse((nd.to_bits(), u)));
+            }
+        }
+    }
+    dist
 }
