@@ -131,6 +131,7 @@ pub struct ViewerApp {
     exporting: Option<Job<String>>,
     export_dir: String,
     selection: Option<Selection>,
+    edit_target: usize,
     viewport_rect: Option<egui::Rect>,
     has_wgpu: bool,
     frames_with_face: u32,
@@ -173,6 +174,7 @@ impl ViewerApp {
                 .map(|d| d.display().to_string())
                 .unwrap_or_else(|_| ".".to_owned()),
             selection: None,
+            edit_target: 0,
             viewport_rect: None,
             has_wgpu,
             frames_with_face: 0,
@@ -744,6 +746,90 @@ impl ViewerApp {
                 None => {}
             }
         }
+        self.muscle_edit_ui(ui);
+    }
+
+    fn muscle_edit_ui(&mut self, ui: &mut egui::Ui) {
+        let Some(element) = self.selection.as_ref().and_then(|s| s.element) else {
+            return;
+        };
+        let Some(model) = self.model() else { return };
+        let names: Vec<String> = self
+            .params
+            .muscles
+            .as_ref()
+            .unwrap_or(&model.rig.muscles)
+            .iter()
+            .map(muscle_label)
+            .collect();
+        if names.is_empty() {
+            return;
+        }
+        self.edit_target = self.edit_target.min(names.len() - 1);
+        let mut add = false;
+        let mut remove = false;
+        ui.horizontal_wrapped(|ui| {
+            egui::ComboBox::from_label("Target muscle")
+                .selected_text(&names[self.edit_target])
+                .show_ui(ui, |ui| {
+                    for (i, n) in names.iter().enumerate() {
+                        ui.selectable_value(&mut self.edit_target, i, n);
+                    }
+                });
+            add = ui.button("Add element to muscle").clicked();
+            remove = ui.button("Remove element from muscles").clicked();
+        });
+        if add {
+            let target = self.edit_target;
+            self.edit_muscles(|muscles, geo, rig| {
+                if let Some(m) = muscles.get_mut(target) {
+                    insert_into_chain(&mut m.front_chain, element, |e| geo.centroid(rig, e));
+                }
+            });
+        }
+        if remove {
+            self.edit_muscles(|muscles, _, _| {
+                for m in muscles.iter_mut() {
+                    m.front_chain.retain(|&e| e != element);
+                    m.back_chain.retain(|&e| e != element);
+                }
+            });
+        }
+    }
+
+    /// Applies `edit` to the muscles used for the next rebuild (a copy of the rig's muscles at
+    /// first) and says so; "Rebuild rig" solves with them.
+    fn edit_muscles(
+        &mut self,
+        edit: impl FnOnce(&mut Vec<face_prep::Muscle>, &RigGeometry, &face_prep::FaceRig),
+    ) {
+        let Some(face) = &self.face else { return };
+        let (Some(model), Some(geo)) = (&face.model, &face.rig_geometry) else {
+            return;
+        };
+        let mut muscles = self
+            .params
+            .muscles
+            .clone()
+            .unwrap_or_else(|| model.rig.muscles.clone());
+        edit(&mut muscles, geo, &model.rig);
+        let summary: Vec<String> = muscles
+            .iter()
+            .map(|m| format!("{} {}", muscle_label(m), m.front_chain.len()))
+            .collect();
+        self.params.muscles = Some(muscles);
+        self.info(format!(
+            "Muscles edited (front elements: {}); press Rebuild rig to solve with them",
+            summary.join(", ")
+        ));
+    }
+
+    /// The muscles the next rebuild will use (edited ones, or the rig's).
+    pub fn pending_muscles(&self) -> Option<&[face_prep::Muscle]> {
+        match &self.params.muscles {
+            Some(m) => Some(m),
+            None => self.model().map(|m| m.rig.muscles.as_slice()),
+        }
     }
 
     fn rig_ui(&mut self, ui: &mut egui::Ui) {
@@ -801,7 +887,7 @@ impl ViewerApp {
         let path = Path::new(self.export_dir.trim()).join(format!("{stem}.muscles"));
         match face_prep::muscle_file::load(&path, model.rig.shell.triangles.len()) {
             Ok(muscles) => {
-                self.params.muscles = Some(muscles.into_iter().map(Into::into).collect());
+                self.params.muscles = Some(muscles);
                 self.info(format!("Loaded {}; rebuilding the rig", path.display()));
                 self.rebuild_rig(ctx);
             }
@@ -1063,4 +1149,52 @@ pub fn preset_label(name: &str) -> String {
     c.next()
         .map(|f| f.to_uppercase().chain(c).collect())
         .unwrap_or_default()
+}
+
+fn muscle_label(m: &face_prep::Muscle) -> String {
+    m.kind
+        .map_or_else(|| m.name.clone(), |k| k.display_name().to_owned())
+}
+
+/// Inserts `element` into an ordered chain where it lengthens the chain's path the least
+/// (between two consecutive elements, or at either end); no-op if already present.
+///
+/// ```
+/// use glam::DVec3;
+/// let mut chain = vec![0, 2];
+/// let pos = |e: u32| Some(DVec3::new(e as f64, 0.0, 0.0));
+/// viewer::app::insert_into_chain(&mut chain, 1, pos);
+/// viewer::app::insert_into_chain(&mut chain, 3, pos);
+/// assert_eq!(chain, vec![0, 1, 2, 3]);
+/// ```
+pub fn insert_into_chain(
+    chain: &mut Vec<u32>,
+    element: u32,
+    centroid: impl Fn(u32) -> Option<DVec3>,
+) {
+    if chain.contains(&element) {
+        return;
+    }
+    let Some(p) = centroid(element) else { return };
+    let c: Vec<Option<DVec3>> = chain.iter().map(|&e| centroid(e)).collect();
+    let dist = |a: Option<DVec3>, b: DVec3| a.map_or(f64::INFINITY, |a| a.distance(b));
+    let mut best = (
+        chain.len(),
+        c.last().copied().flatten().map_or(0.0, |l| l.distance(p)),
+    );
+    if let Some(first) = c.first() {
+        let cost = dist(*first, p);
+        if cost < best.1 {
+            best = (0, cost);
+        }
+    }
+    for i in 1..c.len() {
+        if let (Some(a), Some(b)) = (c[i - 1], c[i]) {
+            let cost = a.distance(p) + p.distance(b) - a.distance(b);
+            if cost < best.1 {
+                best = (i, cost);
+            }
+        }
+    }
+    chain.insert(best.0, element);
 }

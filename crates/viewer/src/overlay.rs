@@ -84,7 +84,8 @@ impl RigGeometry {
         ])
     }
 
-    fn centroid(&self, rig: &FaceRig, e: u32) -> Option<DVec3> {
+    /// Centroid of shell element `e` (user frame), if it exists.
+    pub fn centroid(&self, rig: &FaceRig, e: u32) -> Option<DVec3> {
         self.corners(rig, e).map(|[a, b, c]| (a + b + c) / 3.0)
     }
 }

@@ -28,8 +28,8 @@ pub fn preview_basis(mesh: &FaceMesh) -> MuscleBasis {
 }
 
 /// Reads a face file (OBJ, glTF, GLB) as its neutral preview basis.
-pub fn load_neutral(path: &Path) -> Result<MuscleBasis, OpenError> {
-    let (mesh, _) = facebem::open::read_face(path)?;
+pub fn load_neutral(path: &Path) -> Result<MuscleBasis, Box<OpenError>> {
+    let (mesh, _) = facebem::open::read_face(path).map_err(Box::new)?;
     Ok(preview_basis(&mesh))
 }
 
@@ -92,7 +92,7 @@ mod tests {
         assert!(err.contains("bad.obj"), "{err}");
         let missing = dir.path().join("missing.obj");
         assert!(matches!(
-            load_neutral(&missing),
+            load_neutral(&missing).map_err(|e| *e),
             Err(OpenError::Read { .. })
         ));
     }

@@ -275,3 +275,111 @@ fn viewport_drag_orbits_wheel_zooms_click_picks_and_reset_view_restores() {
         "click {p} is outside the picked triangle {corners:?}"
     );
 }
+
+#[test]
+fn editing_muscles_saving_the_muscle_file_and_rebuilding_with_a_new_offset() {
+    let cache = tempfile::tempdir().unwrap();
+    let out = tempfile::tempdir().unwrap();
+    let options = viewer::ViewerOptions {
+        cache_dir: Some(cache.path().to_path_buf()),
+        ..Default::default()
+    };
+    let mut harness = egui_kittest::Harness::builder()
+        .with_size([1100.0, 1000.0])
+        .wgpu()
+        .build_eframe(move |cc| viewer::ViewerApp::new(cc, options.clone()));
+    common::wait_idle(&mut harness);
+    let model = harness.state().model().expect("rig computed").clone();
+    harness.state_mut().set_export_dir(out.path());
+
+    // Pick the front element under the viewport centre.
+    let rect = harness.state().viewport_rect().unwrap();
+    let c = rect.center();
+    harness.hover_at(c);
+    for pressed in [true, false] {
+        harness.event(egui::Event::PointerButton {
+            pos: c,
+            button: egui::PointerButton::Primary,
+            pressed,
+            modifiers: egui::Modifiers::NONE,
+        });
+    }
+    harness.run();
+    let sel = harness.state().selection().cloned().expect("selection");
+    let element = sel.element.expect("a rig element under the centre");
+    assert!((element as usize) < model.rig.face_triangle_count);
+    let in_muscles = model
+        .rig
+        .muscles
+        .iter()
+        .filter(|m| m.front_chain.contains(&element) || m.back_chain.contains(&element))
+        .count();
+    assert_eq!(sel.muscles.len(), in_muscles);
+
+    // Add it to the target muscle (the first one), then remove it from every muscle.
+    harness.get_by_label("Add element to muscle").click();
+    harness.run();
+    let pending = harness.state().pending_muscles().unwrap().to_vec();
+    assert!(pending[0].front_chain.contains(&element));
+    assert_eq!(
+        pending[0].front_chain.len(),
+        model.rig.muscles[0].front_chain.len()
+            + usize::from(!model.rig.muscles[0].front_chain.contains(&element))
+    );
+    harness.get_by_label("Remove element from muscles").click();
+    harness.run();
+    let pending = harness.state().pending_muscles().unwrap().to_vec();
+    assert!(
+        pending
+            .iter()
+            .all(|m| !m.front_chain.contains(&element) && !m.back_chain.contains(&element))
+    );
+
+    // The muscle file holds the rig's muscles.
+    harness.get_by_label("Save muscle file").click();
+    harness.step();
+    common::wait_idle(&mut harness);
+    let file = out.path().join("mediapipe_canonical_4loop.muscles");
+    let msg = harness.state().message().cloned().unwrap();
+    assert!(!msg.is_error && msg.text.contains("Exported"), "{}", msg.text);
+    let read = face_prep::muscle_file::load(&file, model.rig.shell.triangles.len()).unwrap();
+    assert_eq!(read, model.rig.muscles);
+
+    // A new offset rebuilds in the background; cancelling keeps the old rig.
+    harness
+        .get_by_role_and_label(Role::Slider, "Offset (× face size)")
+        .set_value_accesskit(0.03);
+    harness.run();
+    harness.state_mut().params_mut().muscles = None;
+    harness.get_by_label("Rebuild rig").click();
+    harness.step();
+    assert!(harness.state().is_rigging());
+    harness.step(); // the status bar shows the job from the next frame on
+    harness.get_by_label("Cancel").click();
+    harness.step();
+    common::wait_idle(&mut harness);
+    let msg = harness.state().message().cloned().unwrap();
+    assert!(
+        msg.is_error && msg.text.contains("cancelled"),
+        "{}",
+        msg.text
+    );
+    assert_eq!(harness.state().model().unwrap().basis, model.basis);
+
+    harness.get_by_label("Rebuild rig").click();
+    harness.step();
+    common::wait_idle(&mut harness);
+    let rebuilt = harness.state().model().unwrap();
+    assert!(
+        (rebuilt.params.rig.offset - 0.03).abs() < 1e-12,
+        "{}",
+        rebuilt.params.rig.offset
+    );
+    assert_ne!(rebuilt.basis.displacements, model.basis.displacements);
+    assert_eq!(rebuilt.basis.neutral, model.basis.neutral);
+    assert_eq!(
+        std::fs::read_dir(cache.path()).unwrap().count(),
+        2,
+        "one cache file per offset"
+    );
+}
