@@ -48,7 +48,10 @@ impl TriangleBvh {
             order: (0..triangles.len() as u32).collect(),
             nodes: Vec::with_capacity(2 * triangles.len() / 2 + 1),
         };
-        let centroids: Vec<DVec3> = triangles.iter().map(|t| (t[0] + t[1] + t[2]) / 3.0).collect();
+        let centroids: Vec<DVec3> = triangles
+            .iter()
+            .map(|t| (t[0] + t[1] + t[2]) / 3.0)
+            .collect();
         bvh.nodes.push(Node {
             lo: DVec3::ZERO,
             hi: DVec3::ZERO,

@@ -91,7 +91,9 @@ pub enum PrepError {
     #[error("the mesh has no triangles")]
     EmptyMesh,
     /// A face refers to a vertex that does not exist.
-    #[error("triangle {triangle} refers to vertex {index} but there are only {vertex_count} vertices")]
+    #[error(
+        "triangle {triangle} refers to vertex {index} but there are only {vertex_count} vertices"
+    )]
     IndexOutOfRange {
         /// Triangle index (after triangulation).
         triangle: usize,
@@ -165,7 +167,10 @@ pub enum PrepError {
         sizes: Vec<usize>,
     },
     /// Not exactly four boundary loops (face contour, two eyes, mouth).
-    #[error("expected 4 boundary loops (face contour, 2 eyes, mouth), found {count}: {}", list_loops(loops))]
+    #[error(
+        "expected 4 boundary loops (face contour, 2 eyes, mouth), found {count}: {}",
+        list_loops(loops)
+    )]
     WrongLoopCount {
         /// Number of loops found.
         count: usize,
@@ -255,7 +260,9 @@ pub enum MuscleFileError {
         found: usize,
     },
     /// An element index beyond the shell.
-    #[error("line {line}: element {index} of muscle {muscle:?} is out of range (shell has {element_count} elements)")]
+    #[error(
+        "line {line}: element {index} of muscle {muscle:?} is out of range (shell has {element_count} elements)"
+    )]
     IndexOutOfRange {
         /// Line number.
         line: usize,

@@ -25,7 +25,8 @@ pub struct FaceMesh {
 
 /// Bit pattern of a position, with −0.0 folded onto +0.0, for exact welding.
 fn weld_key(p: DVec3) -> [u64; 3] {
-    p.to_array().map(|c| if c == 0.0 { 0u64 } else { c.to_bits() })
+    p.to_array()
+        .map(|c| if c == 0.0 { 0u64 } else { c.to_bits() })
 }
 
 struct Welded {
@@ -70,7 +71,10 @@ fn weld(positions: &[DVec3], triangles: &[[u32; 3]]) -> Result<Welded, PrepError
         });
         remap[i] = id;
     }
-    let triangles = triangles.iter().map(|t| t.map(|i| remap[i as usize])).collect();
+    let triangles = triangles
+        .iter()
+        .map(|t| t.map(|i| remap[i as usize]))
+        .collect();
     Ok(Welded {
         vertices,
         triangles,
@@ -89,7 +93,10 @@ impl FaceMesh {
     /// let err = FaceMesh::from_triangles(&[DVec3::ZERO, DVec3::X, DVec3::Y], &[[0, 1, 2]]);
     /// assert!(matches!(err, Err(PrepError::WrongLoopCount { count: 1, .. })));
     /// ```
-    pub fn from_triangles(positions: &[DVec3], triangles: &[[u32; 3]]) -> Result<FaceMesh, PrepError> {
+    pub fn from_triangles(
+        positions: &[DVec3],
+        triangles: &[[u32; 3]],
+    ) -> Result<FaceMesh, PrepError> {
         let w = weld(positions, triangles)?;
         let input_to_vertex = positions
             .iter()
@@ -212,10 +219,18 @@ fn scan_obj_positions(text: &str) -> Vec<DVec3> {
     out
 }
 
-fn gltf_mesh(bytes: &[u8], base: Option<&Path>, mesh_name: Option<&str>) -> Result<FaceMesh, PrepError> {
+fn gltf_mesh(
+    bytes: &[u8],
+    base: Option<&Path>,
+    mesh_name: Option<&str>,
+) -> Result<FaceMesh, PrepError> {
     let gltf::Gltf { document, blob } = gltf::Gltf::from_slice(bytes)?;
     let buffers = gltf::import_buffers(&document, base, blob)?;
-    let label = |m: &gltf::Mesh| m.name().map(str::to_owned).unwrap_or_else(|| format!("#{}", m.index()));
+    let label = |m: &gltf::Mesh| {
+        m.name()
+            .map(str::to_owned)
+            .unwrap_or_else(|| format!("#{}", m.index()))
+    };
     let mesh = match mesh_name {
         None => document.meshes().next().ok_or(PrepError::GltfNoMesh)?,
         Some(name) => document
@@ -260,7 +275,9 @@ fn gltf_mesh(bytes: &[u8], base: Option<&Path>, mesh_name: Option<&str>) -> Resu
                     }
                 })
                 .collect(),
-            Mode::TriangleFan => (2..idx.len()).map(|k| [idx[0], idx[k - 1], idx[k]]).collect(),
+            Mode::TriangleFan => (2..idx.len())
+                .map(|k| [idx[0], idx[k - 1], idx[k]])
+                .collect(),
             other => return Err(err(&format!("mode {other:?} is not a triangle mode"))),
         };
         for t in tris {
@@ -282,16 +299,23 @@ fn gltf_mesh(bytes: &[u8], base: Option<&Path>, mesh_name: Option<&str>) -> Resu
 /// instantiates mesh `mesh_index`.
 fn mesh_world_transform(document: &gltf::Document, mesh_index: usize) -> Option<DMat4> {
     fn visit(node: gltf::Node, parent: DMat4, mesh_index: usize) -> Option<DMat4> {
-        let local = DMat4::from_cols_array_2d(&node.transform().matrix().map(|c| c.map(|x| x as f64)));
+        let local =
+            DMat4::from_cols_array_2d(&node.transform().matrix().map(|c| c.map(|x| x as f64)));
         let world = parent * local;
         if node.mesh().map(|m| m.index()) == Some(mesh_index) {
             return Some(world);
         }
         node.children().find_map(|c| visit(c, world, mesh_index))
     }
-    let scenes = document.default_scene().into_iter().chain(document.scenes());
+    let scenes = document
+        .default_scene()
+        .into_iter()
+        .chain(document.scenes());
     for scene in scenes {
-        if let Some(m) = scene.nodes().find_map(|n| visit(n, DMat4::IDENTITY, mesh_index)) {
+        if let Some(m) = scene
+            .nodes()
+            .find_map(|n| visit(n, DMat4::IDENTITY, mesh_index))
+        {
             return Some(m);
         }
     }

@@ -76,7 +76,11 @@ impl Box2 {
         Box2::new(c - h, c + h)
     }
     fn check(&self, name: &'static str) -> Result<(), PrepError> {
-        if self.min.is_finite() && self.max.is_finite() && self.min.x < self.max.x && self.min.y < self.max.y {
+        if self.min.is_finite()
+            && self.max.is_finite()
+            && self.min.x < self.max.x
+            && self.min.y < self.max.y
+        {
             Ok(())
         } else {
             Err(PrepError::InvalidBox {
@@ -115,17 +119,34 @@ pub struct FeatureBoxes {
 
 impl FeatureBoxes {
     /// Boxes from the four loops of a face whose vertices are in the canonical frame.
-    pub fn from_loops(canonical_vertices: &[DVec3], loops: &FaceLoops) -> Result<FeatureBoxes, PrepError> {
+    pub fn from_loops(
+        canonical_vertices: &[DVec3],
+        loops: &FaceLoops,
+    ) -> Result<FeatureBoxes, PrepError> {
         let b = |l: &[u32]| Box2::around(l.iter().map(|&i| canonical_vertices[i as usize]));
-        FeatureBoxes::derive(b(&loops.face), b(&loops.eye_l), b(&loops.eye_r), b(&loops.mouth))
+        FeatureBoxes::derive(
+            b(&loops.face),
+            b(&loops.eye_l),
+            b(&loops.eye_r),
+            b(&loops.mouth),
+        )
     }
 
     /// Derives FBNose and FBSkull from the four measured boxes (after the user moved or resized
     /// them, for example) and checks them all.
-    pub fn derive(face: Box2, eye_l: Box2, eye_r: Box2, mouth: Box2) -> Result<FeatureBoxes, PrepError> {
+    pub fn derive(
+        face: Box2,
+        eye_l: Box2,
+        eye_r: Box2,
+        mouth: Box2,
+    ) -> Result<FeatureBoxes, PrepError> {
         let eye_line = 0.5 * (eye_l.center().y + eye_r.center().y);
-        let bottom = (eye_line - NOSE_BOTTOM_FRACTION * (eye_line - mouth.center().y)).max(mouth.max.y);
-        let nose = Box2::new(DVec2::new(eye_r.max.x, bottom), DVec2::new(eye_l.min.x, eye_line));
+        let bottom =
+            (eye_line - NOSE_BOTTOM_FRACTION * (eye_line - mouth.center().y)).max(mouth.max.y);
+        let nose = Box2::new(
+            DVec2::new(eye_r.max.x, bottom),
+            DVec2::new(eye_l.min.x, eye_line),
+        );
         let skull = Box2::new(
             DVec2::new(face.min.x, eye_l.max.y.max(eye_r.max.y)),
             DVec2::new(face.max.x, face.max.y),

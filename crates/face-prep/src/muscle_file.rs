@@ -58,7 +58,11 @@ struct Lines<'a> {
 impl<'a> Lines<'a> {
     fn new(text: &'a str) -> Lines<'a> {
         Lines {
-            lines: text.lines().enumerate().map(|(i, l)| (i + 1, l.trim())).collect(),
+            lines: text
+                .lines()
+                .enumerate()
+                .map(|(i, l)| (i + 1, l.trim()))
+                .collect(),
             pos: 0,
         }
     }
@@ -83,7 +87,12 @@ impl<'a> Lines<'a> {
     }
 }
 
-fn expect_header(lines: &mut Lines, header: &'static str, muscle: &str, missing: &'static str) -> Result<(), MuscleFileError> {
+fn expect_header(
+    lines: &mut Lines,
+    header: &'static str,
+    muscle: &str,
+    missing: &'static str,
+) -> Result<(), MuscleFileError> {
     match lines.next_nonblank() {
         Some((_, l)) if l.eq_ignore_ascii_case(header) => Ok(()),
         Some((line, l)) => Err(MuscleFileError::Unexpected {
@@ -241,7 +250,8 @@ pub fn to_string(muscles: &[Muscle]) -> Result<String, MuscleFileError> {
     let mut s = String::new();
     for m in muscles {
         let name = m.name.trim();
-        if name.is_empty() || name.starts_with('[') || name.contains(['\n', '\r']) || name != m.name {
+        if name.is_empty() || name.starts_with('[') || name.contains(['\n', '\r']) || name != m.name
+        {
             return Err(MuscleFileError::BadName(m.name.clone()));
         }
         let _ = writeln!(s, "[Name]\n{name}\n[Size]\n{}\n[Data]", m.front_chain.len());
@@ -267,8 +277,14 @@ pub fn write(mut writer: impl Write, muscles: &[Muscle]) -> Result<(), MuscleFil
 /// Writes a muscle file atomically (temporary file in the same directory, then rename).
 pub fn save(path: &Path, muscles: &[Muscle]) -> Result<(), MuscleFileError> {
     let text = to_string(muscles)?;
-    let dir = path.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
-    let file_name = path.file_name().and_then(|n| n.to_str()).unwrap_or("muscles");
+    let dir = path
+        .parent()
+        .filter(|d| !d.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    let file_name = path
+        .file_name()
+        .and_then(|n| n.to_str())
+        .unwrap_or("muscles");
     let tmp = dir.join(format!(".{file_name}.{}.tmp", std::process::id()));
     let result = (|| {
         let mut f = std::fs::File::create(&tmp)?;

@@ -97,11 +97,23 @@ pub fn project_definer(
     end: DVec2,
     spacing: f64,
 ) -> (Vec<u32>, Vec<u32>) {
-    let z_top = shell.vertices.iter().map(|v| v.z).fold(f64::NEG_INFINITY, f64::max);
-    let z_bottom = shell.vertices.iter().map(|v| v.z).fold(f64::INFINITY, f64::min);
+    let z_top = shell
+        .vertices
+        .iter()
+        .map(|v| v.z)
+        .fold(f64::NEG_INFINITY, f64::max);
+    let z_bottom = shell
+        .vertices
+        .iter()
+        .map(|v| v.z)
+        .fold(f64::INFINITY, f64::min);
     let z0 = z_top + 0.01 * (z_top - z_bottom).max(1e-9);
     let len = start.distance(end);
-    let steps = if spacing > 0.0 { ((len / spacing).ceil() as usize).max(1) } else { 1 };
+    let steps = if spacing > 0.0 {
+        ((len / spacing).ceil() as usize).max(1)
+    } else {
+        1
+    };
     let (mut front, mut back) = (Vec::new(), Vec::new());
     let (mut seen_f, mut seen_b) = (HashSet::new(), HashSet::new());
     for s in 0..=steps {
@@ -114,7 +126,9 @@ pub fn project_definer(
         if !skull.contains(&first.triangle) && seen_f.insert(first.triangle) {
             front.push(first.triangle);
         }
-        if let Some(b) = hits[1..].iter().find(|h| shell.tags[h.triangle as usize] == ElementTag::Back)
+        if let Some(b) = hits[1..]
+            .iter()
+            .find(|h| shell.tags[h.triangle as usize] == ElementTag::Back)
             && !skull.contains(&b.triangle)
             && seen_b.insert(b.triangle)
         {
@@ -125,8 +139,15 @@ pub fn project_definer(
 }
 
 /// Places the ten standard muscles (in [`MuscleKind::ALL`] order) from the boxes.
-pub fn place_standard_muscles(shell: &Shell, boxes: &FeatureBoxes, skull: &[u32], spacing: f64) -> Vec<Muscle> {
-    let tris: Vec<[DVec3; 3]> = (0..shell.element_count()).map(|e| shell.corners(e)).collect();
+pub fn place_standard_muscles(
+    shell: &Shell,
+    boxes: &FeatureBoxes,
+    skull: &[u32],
+    spacing: f64,
+) -> Vec<Muscle> {
+    let tris: Vec<[DVec3; 3]> = (0..shell.element_count())
+        .map(|e| shell.corners(e))
+        .collect();
     let bvh = TriangleBvh::new(&tris);
     let skull: HashSet<u32> = skull.iter().copied().collect();
     MuscleKind::ALL

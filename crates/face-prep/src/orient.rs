@@ -37,7 +37,11 @@ pub fn loop_centroid(vertices: &[DVec3], lp: &[u32]) -> DVec3 {
         sum += 0.5 * (a + b) * l;
         total += l;
     }
-    if total > 0.0 { sum / total } else { vertices[lp[0] as usize] }
+    if total > 0.0 {
+        sum / total
+    } else {
+        vertices[lp[0] as usize]
+    }
 }
 
 /// Finds the rigid transform from the input frame to the canonical frame and classifies the
@@ -66,7 +70,11 @@ pub fn canonical_frame(
         .unwrap_or(0);
     let inner: Vec<usize> = (0..4).filter(|&i| i != outer).collect();
     let dissimilarity = |a: usize, b: usize| (perim[a] - perim[b]).abs() / perim[a].max(perim[b]);
-    let pairs = [(inner[0], inner[1], inner[2]), (inner[0], inner[2], inner[1]), (inner[1], inner[2], inner[0])];
+    let pairs = [
+        (inner[0], inner[1], inner[2]),
+        (inner[0], inner[2], inner[1]),
+        (inner[1], inner[2], inner[0]),
+    ];
     let (e1, e2, m) = pairs
         .into_iter()
         .min_by(|p, q| dissimilarity(p.0, p.1).total_cmp(&dissimilarity(q.0, q.1)))
@@ -110,7 +118,11 @@ pub fn canonical_frame(
     let origin = (c1 + c2 + cm) / 3.0;
     let rot = DMat3::from_cols(x, y, z).transpose();
     let canonical_from_input = DAffine3::from_mat3_translation(rot, -(rot * origin));
-    let (left, right) = if x.dot(c1) > x.dot(c2) { (e1, e2) } else { (e2, e1) };
+    let (left, right) = if x.dot(c1) > x.dot(c2) {
+        (e1, e2)
+    } else {
+        (e2, e1)
+    };
     Ok((
         canonical_from_input,
         FaceLoops {

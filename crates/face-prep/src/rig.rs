@@ -127,16 +127,29 @@ impl FaceRig {
     }
 
     /// Builds the rig with the given (user-adjusted) feature boxes, canonical frame.
-    pub fn build_with_boxes(face: &FaceMesh, params: &RigParams, boxes: FeatureBoxes) -> Result<FaceRig, PrepError> {
+    pub fn build_with_boxes(
+        face: &FaceMesh,
+        params: &RigParams,
+        boxes: FeatureBoxes,
+    ) -> Result<FaceRig, PrepError> {
         FaceRig::build_impl(face, params, Some(boxes))
     }
 
-    fn build_impl(face: &FaceMesh, params: &RigParams, boxes: Option<FeatureBoxes>) -> Result<FaceRig, PrepError> {
+    fn build_impl(
+        face: &FaceMesh,
+        params: &RigParams,
+        boxes: Option<FeatureBoxes>,
+    ) -> Result<FaceRig, PrepError> {
         params.check()?;
         let loops = topology::validate(&face.vertices, &face.triangles)?;
         topology::check_four_loops(&face.vertices, &loops)?;
-        let (canonical_from_input, loops) = canonical_frame(&face.vertices, &face.triangles, &loops)?;
-        let verts: Vec<DVec3> = face.vertices.iter().map(|&p| canonical_from_input.transform_point3(p)).collect();
+        let (canonical_from_input, loops) =
+            canonical_frame(&face.vertices, &face.triangles, &loops)?;
+        let verts: Vec<DVec3> = face
+            .vertices
+            .iter()
+            .map(|&p| canonical_from_input.transform_point3(p))
+            .collect();
         let auto = FeatureBoxes::from_loops(&verts, &loops)?;
         let face_size = auto.face.width().max(auto.face.height());
         let boxes = match boxes {
@@ -182,7 +195,10 @@ impl FaceRig {
             .map(|(a, b)| self.shell.vertices[a as usize].distance(self.shell.vertices[b as usize]))
             .collect();
         lengths.sort_by(f64::total_cmp);
-        lengths.get(lengths.len() / 2).copied().unwrap_or(self.face_size * 0.01)
+        lengths
+            .get(lengths.len() / 2)
+            .copied()
+            .unwrap_or(self.face_size * 0.01)
     }
 
     fn place_muscles(&mut self) {
@@ -207,7 +223,10 @@ impl FaceRig {
     pub fn with_muscles(mut self, muscles: Vec<Muscle>) -> Result<FaceRig, PrepError> {
         let skull: HashSet<u32> = self.skull.iter().copied().collect();
         for m in &muscles {
-            for (chain, want) in [(&m.front_chain, ElementTag::Front), (&m.back_chain, ElementTag::Back)] {
+            for (chain, want) in [
+                (&m.front_chain, ElementTag::Front),
+                (&m.back_chain, ElementTag::Back),
+            ] {
                 let mut seen = HashSet::new();
                 for &e in chain {
                     let bad = |reason| PrepError::InvalidMuscle {

@@ -69,15 +69,25 @@ pub fn vertex_normals(vertices: &[DVec3], triangles: &[[u32; 3]]) -> Vec<DVec3> 
             n[i as usize] += c;
         }
     }
-    n.into_iter().map(|v| v.try_normalize().unwrap_or(DVec3::Z)).collect()
+    n.into_iter()
+        .map(|v| v.try_normalize().unwrap_or(DVec3::Z))
+        .collect()
 }
 
 impl Shell {
     /// Builds the shell from the face (canonical frame) and its classified loops.
-    pub fn build(vertices: &[DVec3], triangles: &[[u32; 3]], loops: &FaceLoops, dims: ShellDims) -> Shell {
+    pub fn build(
+        vertices: &[DVec3],
+        triangles: &[[u32; 3]],
+        loops: &FaceLoops,
+        dims: ShellDims,
+    ) -> Shell {
         let n = vertices.len();
         let normals = offset_directions(vertices, triangles);
-        let front_tris: Vec<[DVec3; 3]> = triangles.iter().map(|t| t.map(|i| vertices[i as usize])).collect();
+        let front_tris: Vec<[DVec3; 3]> = triangles
+            .iter()
+            .map(|t| t.map(|i| vertices[i as usize]))
+            .collect();
         let front_bvh = TriangleBvh::new(&front_tris);
         // Inward move of a point, clamped by the distance to the front surface along −normal.
         let moved = |p: DVec3, normal: DVec3, distance: f64| -> DVec3 {
@@ -103,7 +113,11 @@ impl Shell {
         let adjacency = vertex_adjacency(n, triangles);
         let dist = contour_distance(vertices, &adjacency, &kind);
         let taper = |d: f64| {
-            let s = if dims.taper > 0.0 { (d / dims.taper).min(1.0) } else { 1.0 };
+            let s = if dims.taper > 0.0 {
+                (d / dims.taper).min(1.0)
+            } else {
+                1.0
+            };
             s * s * (3.0 - 2.0 * s)
         };
         // Target inward displacement: the full offset away from the eyes and mouth, tapered to
@@ -121,7 +135,11 @@ impl Shell {
             let prev = disp.clone();
             for v in 0..n {
                 if kind[v] == 0 && !adjacency[v].is_empty() {
-                    let avg = adjacency[v].iter().map(|&u| prev[u as usize]).sum::<DVec3>() / adjacency[v].len() as f64;
+                    let avg = adjacency[v]
+                        .iter()
+                        .map(|&u| prev[u as usize])
+                        .sum::<DVec3>()
+                        / adjacency[v].len() as f64;
                     disp[v] = 0.5 * (prev[v] + avg);
                 }
             }
@@ -143,7 +161,10 @@ impl Shell {
             if kind[v] == 1 || len == 0.0 {
                 continue;
             }
-            let worst = incident[v].iter().map(|&t| tri_normal(t).dot(disp[v]) / len).fold(f64::NEG_INFINITY, f64::max);
+            let worst = incident[v]
+                .iter()
+                .map(|&t| tri_normal(t).dot(disp[v]) / len)
+                .fold(f64::NEG_INFINITY, f64::max);
             if worst > -0.1 {
                 disp[v] = -normals[v] * len;
             }
@@ -188,11 +209,19 @@ impl Shell {
             for k in 0..3 {
                 let (a, b) = (t[k], t[(k + 1) % 3]);
                 let key = (a.min(b), a.max(b));
-                if kind[a as usize] == 1 && kind[b as usize] == 1 && !boundary_edges.contains(&key) {
+                if kind[a as usize] == 1 && kind[b as usize] == 1 && !boundary_edges.contains(&key)
+                {
                     chord_mid.entry(key).or_insert_with(|| {
                         let m = 0.5 * (vertices[a as usize] + vertices[b as usize]);
-                        let nm = (normals[a as usize] + normals[b as usize]).try_normalize().unwrap_or(DVec3::Z);
-                        out_v.push(moved(m, nm, dims.offset * taper(0.5 * vertices[a as usize].distance(vertices[b as usize]))));
+                        let nm = (normals[a as usize] + normals[b as usize])
+                            .try_normalize()
+                            .unwrap_or(DVec3::Z);
+                        out_v.push(moved(
+                            m,
+                            nm,
+                            dims.offset
+                                * taper(0.5 * vertices[a as usize].distance(vertices[b as usize])),
+                        ));
                         anchor.push(m);
                         robust_dir.push(nm);
                         (out_v.len() - 1) as u32
@@ -254,8 +283,19 @@ impl Shell {
     /// to the robust offset direction (`robust_dir`, outward) and then get half their offset
     /// per round (toward their anchors on the front face), for at most `rounds` rounds.
     /// Intersections between two front elements belong to the input and are left alone.
-    fn repair_back_intersections(&mut self, n_front: usize, anchor: &[DVec3], robust_dir: &[DVec3], rounds: usize) {
-        let mut disp: Vec<DVec3> = self.vertices.iter().zip(anchor).map(|(p, a)| *p - *a).collect();
+    fn repair_back_intersections(
+        &mut self,
+        n_front: usize,
+        anchor: &[DVec3],
+        robust_dir: &[DVec3],
+        rounds: usize,
+    ) {
+        let mut disp: Vec<DVec3> = self
+            .vertices
+            .iter()
+            .zip(anchor)
+            .map(|(p, a)| *p - *a)
+            .collect();
         let mut redirected = vec![false; self.vertices.len()];
         let mut scale = vec![1.0f64; self.vertices.len()];
         for _ in 0..rounds {
@@ -264,7 +304,12 @@ impl Shell {
             for pair in bad {
                 for e in pair {
                     if self.tags[e as usize] != ElementTag::Front {
-                        shrink.extend(self.triangles[e as usize].iter().copied().filter(|&v| v as usize >= n_front));
+                        shrink.extend(
+                            self.triangles[e as usize]
+                                .iter()
+                                .copied()
+                                .filter(|&v| v as usize >= n_front),
+                        );
                     }
                 }
             }
@@ -280,7 +325,8 @@ impl Shell {
                     scale[v] *= 0.5;
                 }
                 let v = v as u32;
-                self.vertices[v as usize] = anchor[v as usize] + disp[v as usize] * scale[v as usize];
+                self.vertices[v as usize] =
+                    anchor[v as usize] + disp[v as usize] * scale[v as usize];
             }
         }
     }
@@ -395,7 +441,12 @@ pub fn offset_directions(vertices: &[DVec3], triangles: &[[u32; 3]]) -> Vec<DVec
             if faces.is_empty() || worst(n) >= 0.3 {
                 return n;
             }
-            let unit = faces.iter().copied().sum::<DVec3>().try_normalize().unwrap_or(n);
+            let unit = faces
+                .iter()
+                .copied()
+                .sum::<DVec3>()
+                .try_normalize()
+                .unwrap_or(n);
             std::iter::once(n)
                 .chain(std::iter::once(unit))
                 .chain(faces.iter().copied())

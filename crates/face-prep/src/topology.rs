@@ -69,7 +69,8 @@ pub fn validate(vertices: &[DVec3], triangles: &[[u32; 3]]) -> Result<Vec<Vec<u3
     }
     // Directed half-edges -> triangle.
     let mut directed: HashMap<(u32, u32), usize> = HashMap::with_capacity(triangles.len() * 3);
-    let mut undirected: HashMap<(u32, u32), Vec<usize>> = HashMap::with_capacity(triangles.len() * 2);
+    let mut undirected: HashMap<(u32, u32), Vec<usize>> =
+        HashMap::with_capacity(triangles.len() * 2);
     for (t, tri) in triangles.iter().enumerate() {
         for k in 0..3 {
             let (a, b) = (tri[k], tri[(k + 1) % 3]);
@@ -116,7 +117,11 @@ pub fn validate(vertices: &[DVec3], triangles: &[[u32; 3]]) -> Result<Vec<Vec<u3
         *outgoing.entry(a).or_default() += 1;
         next.insert(a, b);
     }
-    let mut bowties: Vec<(u32, usize)> = outgoing.iter().filter(|(_, n)| **n > 1).map(|(v, n)| (*v, *n)).collect();
+    let mut bowties: Vec<(u32, usize)> = outgoing
+        .iter()
+        .filter(|(_, n)| **n > 1)
+        .map(|(v, n)| (*v, *n))
+        .collect();
     bowties.sort_unstable();
     if let Some(&(v, n)) = bowties.first() {
         return Err(PrepError::NonManifoldVertex {
@@ -184,7 +189,11 @@ pub fn loop_summaries(vertices: &[DVec3], loops: &[Vec<u32>]) -> Vec<LoopSummary
         .iter()
         .map(|l| {
             let (min, max) = bounding_box(l.iter().map(|&i| vertices[i as usize]));
-            LoopSummary { size: l.len(), min, max }
+            LoopSummary {
+                size: l.len(),
+                min,
+                max,
+            }
         })
         .collect()
 }

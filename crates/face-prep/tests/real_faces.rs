@@ -15,7 +15,9 @@ const FACES: [(&str, usize, usize); 4] = [
 ];
 
 fn asset(name: &str) -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../assets").join(name)
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../assets")
+        .join(name)
 }
 
 /// Front/front intersecting triangle pairs of the input meshes themselves (ICT lips).
@@ -65,11 +67,26 @@ fn shell_is_closed_manifold_outward_genus_three_and_keeps_the_contract() {
         // Contract: first vertices / triangles are the face's.
         for (i, p) in face.vertices.iter().enumerate() {
             let c = rig.canonical_from_input.transform_point3(*p);
-            assert!(s.vertices[i].distance(c) <= 1e-12 * rig.face_size, "{name} vertex {i}");
+            assert!(
+                s.vertices[i].distance(c) <= 1e-12 * rig.face_size,
+                "{name} vertex {i}"
+            );
         }
-        assert_eq!(&s.triangles[..face.triangles.len()], &face.triangles[..], "{name}");
-        assert!(s.tags[..face.triangles.len()].iter().all(|t| *t == ElementTag::Front));
-        assert!(s.tags[face.triangles.len()..].iter().all(|t| *t != ElementTag::Front));
+        assert_eq!(
+            &s.triangles[..face.triangles.len()],
+            &face.triangles[..],
+            "{name}"
+        );
+        assert!(
+            s.tags[..face.triangles.len()]
+                .iter()
+                .all(|t| *t == ElementTag::Front)
+        );
+        assert!(
+            s.tags[face.triangles.len()..]
+                .iter()
+                .all(|t| *t != ElementTag::Front)
+        );
         // Closed and edge-manifold: every directed edge has exactly one twin.
         let mut directed: HashMap<(u32, u32), usize> = HashMap::new();
         for t in &s.triangles {
@@ -79,7 +96,11 @@ fn shell_is_closed_manifold_outward_genus_three_and_keeps_the_contract() {
         }
         for (&(a, b), &n) in &directed {
             assert_eq!(n, 1, "{name}: directed edge {a}->{b} used {n} times");
-            assert_eq!(directed.get(&(b, a)), Some(&1), "{name}: edge {a}->{b} has no twin");
+            assert_eq!(
+                directed.get(&(b, a)),
+                Some(&1),
+                "{name}: edge {a}->{b} has no twin"
+            );
         }
         assert_eq!(s.euler_characteristic(), -4, "{name}");
         assert!(s.signed_volume() > 0.0, "{name}: shell is inward oriented");
@@ -89,7 +110,10 @@ fn shell_is_closed_manifold_outward_genus_three_and_keeps_the_contract() {
             let p = s.corners(e);
             *nz.entry(s.tags[e]).or_insert(0.0) += (p[1] - p[0]).cross(p[2] - p[0]).z;
         }
-        assert!(nz[&ElementTag::Front] > 0.0 && nz[&ElementTag::Back] < 0.0, "{name}: {nz:?}");
+        assert!(
+            nz[&ElementTag::Front] > 0.0 && nz[&ElementTag::Back] < 0.0,
+            "{name}: {nz:?}"
+        );
         for (e, &src) in s.source_triangle.iter().enumerate() {
             assert!((src as usize) < face.triangles.len(), "{name}: element {e}");
         }
@@ -103,10 +127,17 @@ fn shell_is_closed_manifold_outward_genus_three_and_keeps_the_contract() {
             .filter(|h| h.iter().all(|&e| s.tags[e as usize] == ElementTag::Front))
             .map(|h| s.centroid(h[0] as usize))
             .collect();
-        assert_eq!(front_front.len(), expected_input_intersections(name), "{name}: input self-intersections");
+        assert_eq!(
+            front_front.len(),
+            expected_input_intersections(name),
+            "{name}: input self-intersections"
+        );
         for h in &hits {
             let c = s.centroid(h[1] as usize);
-            let near = front_front.iter().map(|q| q.distance(c)).fold(f64::INFINITY, f64::min);
+            let near = front_front
+                .iter()
+                .map(|q| q.distance(c))
+                .fold(f64::INFINITY, f64::min);
             assert!(
                 near <= 0.03 * rig.face_size,
                 "{name}: shell elements {h:?} ({:?}, {:?}) intersect at {c}, {near:.3} away from any input defect",
@@ -129,12 +160,29 @@ fn nose_tip_in_nose_box_and_skull_above_eyes() {
     for (name, _, _) in FACES {
         let (face, rig) = rig_of(name);
         let front = &rig.shell.vertices[..face.vertices.len()];
-        let tip = front.iter().copied().max_by(|a, b| a.z.total_cmp(&b.z)).unwrap();
+        let tip = front
+            .iter()
+            .copied()
+            .max_by(|a, b| a.z.total_cmp(&b.z))
+            .unwrap();
         let b = &rig.boxes;
-        assert!(b.nose.contains(tip.truncate()), "{name}: nose tip {tip} outside FBNose {:?}", b.nose);
-        assert!(b.skull.min.y >= b.eye_l.max.y && b.skull.min.y >= b.eye_r.max.y, "{name}");
-        assert!(b.eye_l.center().x > b.eye_r.center().x, "{name}: left eye must be at +x");
-        assert!(b.eye_l.min.y > b.mouth.max.y && b.eye_r.min.y > b.mouth.max.y, "{name}: eyes above mouth");
+        assert!(
+            b.nose.contains(tip.truncate()),
+            "{name}: nose tip {tip} outside FBNose {:?}",
+            b.nose
+        );
+        assert!(
+            b.skull.min.y >= b.eye_l.max.y && b.skull.min.y >= b.eye_r.max.y,
+            "{name}"
+        );
+        assert!(
+            b.eye_l.center().x > b.eye_r.center().x,
+            "{name}: left eye must be at +x"
+        );
+        assert!(
+            b.eye_l.min.y > b.mouth.max.y && b.eye_r.min.y > b.mouth.max.y,
+            "{name}: eyes above mouth"
+        );
     }
 }
 
@@ -144,40 +192,77 @@ fn ten_muscles_ordered_chains_disjoint_from_skull() {
         let (_, rig) = rig_of(name);
         let s = &rig.shell;
         let skull: HashSet<u32> = rig.skull.iter().copied().collect();
-        assert!(rig.skull.windows(2).all(|w| w[0] < w[1]), "{name}: skull sorted");
+        assert!(
+            rig.skull.windows(2).all(|w| w[0] < w[1]),
+            "{name}: skull sorted"
+        );
         for e in 0..s.element_count() {
             if s.tags[e] == ElementTag::Rim {
-                assert!(skull.contains(&(e as u32)), "{name}: rim element {e} not in skull");
+                assert!(
+                    skull.contains(&(e as u32)),
+                    "{name}: rim element {e} not in skull"
+                );
             }
         }
         assert_eq!(rig.muscles.len(), 10);
         for (m, kind) in rig.muscles.iter().zip(MuscleKind::ALL) {
             assert_eq!(m.kind, Some(kind));
-            assert!(!m.front_chain.is_empty(), "{name}: {} has no front elements", m.name);
+            assert!(
+                !m.front_chain.is_empty(),
+                "{name}: {} has no front elements",
+                m.name
+            );
             if matches!(kind, MuscleKind::FrontalisL | MuscleKind::FrontalisR) {
-                assert!(m.back_chain.is_empty(), "{name}: frontalis has a back chain");
+                assert!(
+                    m.back_chain.is_empty(),
+                    "{name}: frontalis has a back chain"
+                );
             } else {
-                assert!(!m.back_chain.is_empty(), "{name}: {} has no back elements", m.name);
+                assert!(
+                    !m.back_chain.is_empty(),
+                    "{name}: {} has no back elements",
+                    m.name
+                );
             }
             let (start, end) = face_prep::muscles::muscle_definer(kind, &rig.boxes);
             let dir = (end - start).normalize();
-            for (chain, tag) in [(&m.front_chain, ElementTag::Front), (&m.back_chain, ElementTag::Back)] {
+            for (chain, tag) in [
+                (&m.front_chain, ElementTag::Front),
+                (&m.back_chain, ElementTag::Back),
+            ] {
                 let mut seen = HashSet::new();
                 let mut last = f64::NEG_INFINITY;
                 for &e in chain {
                     assert_eq!(s.tags[e as usize], tag, "{name}: {}", m.name);
-                    assert!(!skull.contains(&e), "{name}: {} uses skull element {e}", m.name);
+                    assert!(
+                        !skull.contains(&e),
+                        "{name}: {} uses skull element {e}",
+                        m.name
+                    );
                     assert!(seen.insert(e), "{name}: {} repeats {e}", m.name);
                     // Ordered start → end: the projection on the definer never steps back by
                     // more than one element size (elements straddle the ray positions).
                     let c = s.centroid(e as usize).truncate();
                     let along = (c - start).dot(dir);
-                    let size = s.corners(e as usize).iter().map(|p| p.truncate().distance(c)).fold(0.0, f64::max);
-                    assert!(along >= last - 2.0 * size, "{name}: {} chain goes backwards at {e}", m.name);
+                    let size = s
+                        .corners(e as usize)
+                        .iter()
+                        .map(|p| p.truncate().distance(c))
+                        .fold(0.0, f64::max);
+                    assert!(
+                        along >= last - 2.0 * size,
+                        "{name}: {} chain goes backwards at {e}",
+                        m.name
+                    );
                     last = last.max(along);
                 }
             }
-            eprintln!("{name}: {:<30} front {:>3} back {:>3}", m.name, m.front_chain.len(), m.back_chain.len());
+            eprintln!(
+                "{name}: {:<30} front {:>3} back {:>3}",
+                m.name,
+                m.front_chain.len(),
+                m.back_chain.len()
+            );
         }
     }
 }
@@ -203,10 +288,19 @@ fn muscle_pattern_moves_each_element_away_from_the_next_and_keeps_the_end() {
 }
 
 fn random_similarity(rng: &mut impl Rng) -> DAffine3 {
-    let axis = DVec3::new(rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0)).normalize();
+    let axis = DVec3::new(
+        rng.random_range(-1.0..1.0),
+        rng.random_range(-1.0..1.0),
+        rng.random_range(-1.0..1.0),
+    )
+    .normalize();
     let rot = DQuat::from_axis_angle(axis, rng.random_range(0.3..6.0));
     let scale = rng.random_range(0.2..5.0);
-    let t = DVec3::new(rng.random_range(-50.0..50.0), rng.random_range(-50.0..50.0), rng.random_range(-50.0..50.0));
+    let t = DVec3::new(
+        rng.random_range(-50.0..50.0),
+        rng.random_range(-50.0..50.0),
+        rng.random_range(-50.0..50.0),
+    );
     DAffine3::from_mat3_translation(DMat3::from_quat(rot) * scale, t)
 }
 
@@ -218,17 +312,39 @@ fn randomly_rotated_faces_give_the_same_features_and_muscles() {
         let m = random_similarity(&mut rng);
         let scale = m.matrix3.x_axis.length();
         let moved = FaceMesh::from_triangles(
-            &face.vertices.iter().map(|&p| m.transform_point3(p)).collect::<Vec<_>>(),
+            &face
+                .vertices
+                .iter()
+                .map(|&p| m.transform_point3(p))
+                .collect::<Vec<_>>(),
             &face.triangles,
         )
         .unwrap();
         let r2 = FaceRig::build(&moved, &RigParams::default()).unwrap();
         assert_eq!(rig.loops, r2.loops, "{name}: loop classification differs");
         let tol = 1e-9 * rig.face_size;
-        let b1 = [rig.boxes.face, rig.boxes.eye_l, rig.boxes.eye_r, rig.boxes.mouth, rig.boxes.nose, rig.boxes.skull];
-        let b2 = [r2.boxes.face, r2.boxes.eye_l, r2.boxes.eye_r, r2.boxes.mouth, r2.boxes.nose, r2.boxes.skull];
+        let b1 = [
+            rig.boxes.face,
+            rig.boxes.eye_l,
+            rig.boxes.eye_r,
+            rig.boxes.mouth,
+            rig.boxes.nose,
+            rig.boxes.skull,
+        ];
+        let b2 = [
+            r2.boxes.face,
+            r2.boxes.eye_l,
+            r2.boxes.eye_r,
+            r2.boxes.mouth,
+            r2.boxes.nose,
+            r2.boxes.skull,
+        ];
         for (a, b) in b1.iter().zip(&b2) {
-            assert!((a.min * scale - b.min).length() <= tol * scale && (a.max * scale - b.max).length() <= tol * scale, "{name}: {a:?} vs {b:?}");
+            assert!(
+                (a.min * scale - b.min).length() <= tol * scale
+                    && (a.max * scale - b.max).length() <= tol * scale,
+                "{name}: {a:?} vs {b:?}"
+            );
         }
         for (a, b) in rig.muscles.iter().zip(&r2.muscles) {
             assert_eq!(a.front_chain, b.front_chain, "{name}: {}", a.name);
@@ -240,7 +356,10 @@ fn randomly_rotated_faces_give_the_same_features_and_muscles() {
             let a = rig.canonical_from_input.transform_point3(*p) * scale;
             let b = r2.canonical_from_input.transform_point3(*q);
             assert!(a.distance(b) <= tol * scale);
-            assert!(r2.input_from_canonical().transform_point3(b).distance(*q) <= 1e-9 * scale * rig.face_size + 1e-9 * 50.0);
+            assert!(
+                r2.input_from_canonical().transform_point3(b).distance(*q)
+                    <= 1e-9 * scale * rig.face_size + 1e-9 * 50.0
+            );
         }
     }
 }
@@ -252,20 +371,39 @@ fn mediapipe_left_and_right_muscles_mirror_each_other() {
     // Mean front edge length as the tolerance unit.
     let edge = {
         let t = &s.triangles[..rig.face_triangle_count];
-        t.iter().map(|t| s.vertices[t[0] as usize].distance(s.vertices[t[1] as usize])).sum::<f64>() / t.len() as f64
+        t.iter()
+            .map(|t| s.vertices[t[0] as usize].distance(s.vertices[t[1] as usize]))
+            .sum::<f64>()
+            / t.len() as f64
     };
     for pair in MuscleKind::ALL.chunks(2) {
         let l = &rig.muscles[pair[0].index()];
         let r = &rig.muscles[pair[1].index()];
-        for (cl, cr) in [(&l.front_chain, &r.front_chain), (&l.back_chain, &r.back_chain)] {
+        for (cl, cr) in [
+            (&l.front_chain, &r.front_chain),
+            (&l.back_chain, &r.back_chain),
+        ] {
             let diff = cl.len().abs_diff(cr.len());
-            assert!(diff <= 2 + cl.len().max(cr.len()) / 5, "{}: {} vs {} elements", l.name, cl.len(), cr.len());
+            assert!(
+                diff <= 2 + cl.len().max(cr.len()) / 5,
+                "{}: {} vs {} elements",
+                l.name,
+                cl.len(),
+                cr.len()
+            );
             // Every left element's mirror image lies near some right element.
             for &e in cl {
                 let c = s.centroid(e as usize);
                 let mirrored = DVec3::new(-c.x, c.y, c.z);
-                let d = cr.iter().map(|&f| s.centroid(f as usize).distance(mirrored)).fold(f64::INFINITY, f64::min);
-                assert!(d <= 1.5 * edge, "{}: element {e} mirror is {d:.3} from the right chain (edge {edge:.3})", l.name);
+                let d = cr
+                    .iter()
+                    .map(|&f| s.centroid(f as usize).distance(mirrored))
+                    .fold(f64::INFINITY, f64::min);
+                assert!(
+                    d <= 1.5 * edge,
+                    "{}: element {e} mirror is {d:.3} from the right chain (edge {edge:.3})",
+                    l.name
+                );
             }
         }
     }
@@ -284,5 +422,8 @@ fn prep_time_figure_for_the_largest_face() {
     );
     let t1 = std::time::Instant::now();
     let _ = load_face(&asset("ict_narrow_face_4loop.obj")).unwrap();
-    eprintln!("FIGURE load time ict_narrow_face_4loop: {:.3} s", t1.elapsed().as_secs_f64());
+    eprintln!(
+        "FIGURE load time ict_narrow_face_4loop: {:.3} s",
+        t1.elapsed().as_secs_f64()
+    );
 }
