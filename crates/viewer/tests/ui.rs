@@ -125,7 +125,7 @@ fn first_run_computes_and_caches_the_default_rig_and_the_second_run_loads_it() {
     };
     let start = |options: viewer::ViewerOptions| {
         egui_kittest::Harness::builder()
-            .with_size([900.0, 600.0])
+            .with_size([1100.0, 1000.0])
             .wgpu()
             .build_eframe(move |cc| viewer::ViewerApp::new(cc, options.clone()))
     };
@@ -150,6 +150,58 @@ fn first_run_computes_and_caches_the_default_rig_and_the_second_run_loads_it() {
     let msg = second.state().message().cloned().unwrap();
     assert!(msg.text.contains("loaded from the cache"), "{}", msg.text);
     assert_eq!(second.state().basis(), Some(&model.basis));
+
+    // A saved rig opens directly, without recomputing.
+    let rig_file = cached[0].as_ref().unwrap().path();
+    open_via_path_field(&mut second, &rig_file);
+    common::wait_idle(&mut second);
+    let msg = second.state().message().cloned().unwrap();
+    assert!(msg.text.contains("Opened the saved rig"), "{}", msg.text);
+    assert_eq!(second.state().model().unwrap().basis, model.basis);
+
+    // A GLB face opens too (here the viewer's own glTF export); its rig job can be cancelled.
+    let out = tempfile::tempdir().unwrap();
+    second.state_mut().set_export_dir(out.path());
+    second.get_by_label("Export glTF").click();
+    second.step();
+    common::wait_idle(&mut second);
+    let msg = second.state().message().cloned().unwrap();
+    assert!(msg.text.contains("Exported"), "{}", msg.text);
+    let glb = std::fs::read_dir(out.path())
+        .unwrap()
+        .next()
+        .unwrap()
+        .unwrap()
+        .path();
+    open_via_path_field(&mut second, &glb);
+    while second.state().basis().is_some_and(|b| b.muscle_count() > 0) {
+        std::thread::sleep(std::time::Duration::from_millis(5));
+        second.step();
+    }
+    second.step();
+    second.get_by_label("Cancel").click();
+    second.step();
+    common::wait_idle(&mut second);
+    let basis = second.state().basis().unwrap();
+    assert_eq!(basis.triangles, model.basis.triangles);
+    assert_eq!(basis.muscle_count(), 0, "rig cancelled: the preview stays");
+    for (a, b) in basis.neutral.iter().zip(&model.basis.neutral) {
+        assert!((*a - *b).length() < 1e-5, "{a} vs {b}");
+    }
+}
+
+fn open_via_path_field(
+    harness: &mut egui_kittest::Harness<'_, viewer::ViewerApp>,
+    path: &std::path::Path,
+) {
+    harness.get_by_label("Path").focus();
+    harness.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::A);
+    harness
+        .get_by_label("Path")
+        .type_text(&path.display().to_string());
+    harness.run();
+    harness.get_by_label("Open").click();
+    harness.step();
 }
 
 #[test]
@@ -341,7 +393,11 @@ fn editing_muscles_saving_the_muscle_file_and_rebuilding_with_a_new_offset() {
     common::wait_idle(&mut harness);
     let file = out.path().join("mediapipe_canonical_4loop.muscles");
     let msg = harness.state().message().cloned().unwrap();
-    assert!(!msg.is_error && msg.text.contains("Exported"), "{}", msg.text);
+    assert!(
+        !msg.is_error && msg.text.contains("Exported"),
+        "{}",
+        msg.text
+    );
     let read = face_prep::muscle_file::load(&file, model.rig.shell.triangles.len()).unwrap();
     assert_eq!(read, model.rig.muscles);
 
