@@ -84,7 +84,7 @@ pub fn canonical_frame(
     let cm = loop_centroid(vertices, &loops[m]);
     let normal = (c2 - c1).cross(cm - c1);
     let scale = (c2 - c1).length().max((cm - c1).length());
-    if !(normal.length() > 1e-6 * scale * scale) {
+    if normal.length().is_nan() || normal.length() <= 1e-6 * scale * scale {
         return Err(PrepError::Orientation {
             reason: format!("eye and mouth centroids {c1}, {c2}, {cm} are collinear"),
         });
@@ -108,7 +108,7 @@ pub fn canonical_frame(
     }
     let up = 0.5 * (c1 + c2) - cm;
     let y_raw = up - z * up.dot(z);
-    if !(y_raw.length() > 1e-9 * scale) {
+    if y_raw.length().is_nan() || y_raw.length() <= 1e-9 * scale {
         return Err(PrepError::Orientation {
             reason: "mouth lies on the eye line".into(),
         });

@@ -58,7 +58,7 @@ pub fn validate(vertices: &[DVec3], triangles: &[[u32; 3]]) -> Result<Vec<Vec<u3
         let corners = tri.map(|i| vertices[i as usize]);
         let area = triangle_area(corners);
         let repeated = tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2];
-        if repeated || !(area > DEGENERATE_REL_AREA * diag2) {
+        if repeated || area.is_nan() || area <= DEGENERATE_REL_AREA * diag2 {
             return Err(PrepError::DegenerateTriangle {
                 triangle: t,
                 vertices: *tri,

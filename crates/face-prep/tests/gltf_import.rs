@@ -65,10 +65,10 @@ fn glb(face: &FaceMesh, rotation: DQuat, scale: DVec3, translation: DVec3) -> Ve
         face.triangles.len() * 3,
     );
     let mut json = json.into_bytes();
-    while json.len() % 4 != 0 {
+    while !json.len().is_multiple_of(4) {
         json.push(b' ');
     }
-    while bin.len() % 4 != 0 {
+    while !bin.len().is_multiple_of(4) {
         bin.push(0);
     }
     let total = 12 + 8 + json.len() + 8 + bin.len();

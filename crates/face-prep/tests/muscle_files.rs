@@ -42,7 +42,8 @@ fn thesis_file_without_back_chain_reads() {
 
 #[test]
 fn errors_carry_line_numbers() {
-    let cases: Vec<(&str, Box<dyn Fn(&MuscleFileError) -> bool>)> = vec![
+    type Check = Box<dyn Fn(&MuscleFileError) -> bool>;
+    let cases: Vec<(&str, Check)> = vec![
         (
             "[Name]\nA\n[Size]\n2\n[Data]\n1\n99\n",
             Box::new(|e| {
