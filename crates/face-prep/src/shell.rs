@@ -324,10 +324,23 @@ impl Shell {
                 } else {
                     scale[v] *= 0.5;
                 }
-                let v = v as u32;
-                self.vertices[v as usize] =
-                    anchor[v as usize] + disp[v as usize] * scale[v as usize];
+                self.vertices[v] = anchor[v] + disp[v] * scale[v];
             }
+        }
+        // Vertices still in an intersection after every round sit where the input itself
+        // overlaps (e.g. interpenetrating lips): shrinking them gains nothing and only makes
+        // the shell needlessly thin there, so they get their full (redirected) offset back.
+        let stuck: std::collections::HashSet<u32> = self
+            .self_intersections()
+            .into_iter()
+            .flatten()
+            .filter(|&e| self.tags[e as usize] != ElementTag::Front)
+            .flat_map(|e| self.triangles[e as usize])
+            .filter(|&v| v as usize >= n_front)
+            .collect();
+        for v in stuck {
+            let v = v as usize;
+            self.vertices[v] = anchor[v] + disp[v];
         }
     }
 
