@@ -18,7 +18,7 @@ use crate::job::Job;
 use crate::overlay::{OverlayOptions, RigGeometry, muscles_of_element, overlay_lines};
 use crate::picking::{TriangleHit, pick_triangle};
 use crate::posed_mesh::{MeshVertex, PosedMesh, bounding_sphere, edge_indices};
-use crate::renderer::{LineVertex, SceneFrame, SceneUniforms, ViewportCallback};
+use crate::renderer::{LineVertex, ReadBackError, SceneFrame, SceneUniforms, ViewportCallback};
 use crate::source;
 
 /// Viewport clear colour (display values, written as is).
@@ -133,6 +133,7 @@ pub struct ViewerApp {
     selection: Option<Selection>,
     edit_target: usize,
     viewport_rect: Option<egui::Rect>,
+    render_state: Option<egui_wgpu::RenderState>,
     has_wgpu: bool,
     frames_with_face: u32,
     ready_at: Option<Instant>,
@@ -176,6 +177,7 @@ impl ViewerApp {
             selection: None,
             edit_target: 0,
             viewport_rect: None,
+            render_state: cc.wgpu_render_state.clone(),
             has_wgpu,
             frames_with_face: 0,
             ready_at: None,
@@ -326,6 +328,15 @@ impl ViewerApp {
     /// The vertices handed to the renderer in the last frame (CPU blend of the basis).
     pub fn uploaded_vertices(&self) -> &[MeshVertex] {
         &self.uploaded_vertices
+    }
+
+    /// Reads the vertex buffer back from the GPU (blocking; tests and diagnostics only).
+    pub fn read_back_gpu_vertices(&self) -> Result<Vec<MeshVertex>, ReadBackError> {
+        let rs = self
+            .render_state
+            .as_ref()
+            .ok_or(ReadBackError::NotInstalled)?;
+        crate::renderer::read_back_vertices(rs)
     }
 
     /// The overlay lines handed to the renderer.

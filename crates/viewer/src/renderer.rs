@@ -107,7 +107,8 @@ impl GpuBuffer {
                     device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                         label: Some(label),
                         contents: bytes,
-                        usage: usage | wgpu::BufferUsages::COPY_DST,
+                        // COPY_SRC: tests read the uploaded vertices back (read_back_vertices).
+                        usage: usage | wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::COPY_SRC,
                     }),
                 );
             }
@@ -461,6 +462,71 @@ impl GpuScene {
             pass.draw(0..self.lines.len, 0..1);
         }
     }
+}
+
+/// Why the GPU vertex buffer could not be read back.
+#[derive(Debug, thiserror::Error, PartialEq)]
+pub enum ReadBackError {
+    /// [`install`] was not called on this render state.
+    #[error("the viewport renderer is not installed on this wgpu device")]
+    NotInstalled,
+    /// No frame with a face has been rendered yet.
+    #[error("no vertices have been uploaded yet")]
+    NothingUploaded,
+    /// Mapping the staging buffer failed.
+    #[error("mapping the read-back buffer failed: {0}")]
+    Map(String),
+}
+
+/// Reads back the vertex buffer the viewport last uploaded to the GPU. Blocks until the GPU is
+/// done: for tests and diagnostics only, never called while drawing.
+pub fn read_back_vertices(
+    render_state: &egui_wgpu::RenderState,
+) -> Result<Vec<MeshVertex>, ReadBackError> {
+    let device = &render_state.device;
+    let staging;
+    {
+        let renderer = render_state.renderer.read();
+        let scene = renderer
+            .callback_resources
+            .get::<GpuScene>()
+            .ok_or(ReadBackError::NotInstalled)?;
+        let (Some(buffer), n) = (&scene.vertices.buffer, scene.vertices.len as u64) else {
+            return Err(ReadBackError::NothingUploaded);
+        };
+        let size = n * size_of::<MeshVertex>() as u64;
+        if size == 0 {
+            return Err(ReadBackError::NothingUploaded);
+        }
+        staging = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("facebem vertex read-back"),
+            size,
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+            label: Some("facebem vertex read-back"),
+        });
+        encoder.copy_buffer_to_buffer(buffer, 0, &staging, 0, size);
+        render_state.queue.submit([encoder.finish()]);
+    }
+    let (tx, rx) = std::sync::mpsc::channel();
+    staging.map_async(wgpu::MapMode::Read, .., move |r| {
+        let _ = tx.send(r);
+    });
+    device
+        .poll(wgpu::PollType::wait_indefinitely())
+        .map_err(|e| ReadBackError::Map(e.to_string()))?;
+    rx.recv()
+        .map_err(|e| ReadBackError::Map(e.to_string()))?
+        .map_err(|e| ReadBackError::Map(e.to_string()))?;
+    let view = staging
+        .get_mapped_range(..)
+        .map_err(|e| ReadBackError::Map(e.to_string()))?;
+    let vertices = bytemuck::cast_slice::<u8, MeshVertex>(&view).to_vec();
+    drop(view);
+    staging.unmap();
+    Ok(vertices)
 }
 
 impl egui_wgpu::CallbackTrait for ViewportCallback {

@@ -48,6 +48,14 @@ fn moving_a_slider_moves_the_uploaded_vertices_exactly_as_the_basis_says() {
     }
     assert!(moved > expected.len() / 10, "only {moved} vertices moved");
 
+    // What the GPU holds after drawing the frame is exactly that buffer.
+    harness.render().expect("wgpu render");
+    let gpu = harness
+        .state()
+        .read_back_gpu_vertices()
+        .expect("GPU read-back");
+    assert_eq!(gpu.as_slice(), harness.state().uploaded_vertices());
+
     // Reset brings every vertex back to neutral.
     harness.get_by_label("Reset muscles").click();
     harness.run();
