@@ -13,6 +13,18 @@ fn asset(name: &str) -> PathBuf {
 /// A GLB with two meshes: mesh 0 "dummy" (one triangle) and mesh 1 "face" under a parent node
 /// (translation) and a child node (rotation + uniform scale).
 fn glb(face: &FaceMesh, rotation: DQuat, scale: DVec3, translation: DVec3) -> Vec<u8> {
+    let (json, bin) = gltf_parts(face, rotation, scale, translation, None);
+    pack_glb(json.into_bytes(), bin)
+}
+
+/// JSON and binary buffer of the test document; `uri` names an external buffer file.
+fn gltf_parts(
+    face: &FaceMesh,
+    rotation: DQuat,
+    scale: DVec3,
+    translation: DVec3,
+    uri: Option<&str>,
+) -> (String, Vec<u8>) {
     let mut bin: Vec<u8> = Vec::new();
     let (mut lo, mut hi) = ([f32::MAX; 3], [f32::MIN; 3]);
     for p in &face.vertices {
@@ -39,7 +51,7 @@ fn glb(face: &FaceMesh, rotation: DQuat, scale: DVec3, translation: DVec3) -> Ve
 "nodes":[{{"children":[1],"translation":[{},{},{}]}},{{"mesh":1,"rotation":[{},{},{},{}],"scale":[{},{},{}]}}],
 "meshes":[{{"name":"dummy","primitives":[{{"attributes":{{"POSITION":0}},"indices":2}}]}},
 {{"name":"face","primitives":[{{"attributes":{{"POSITION":0}},"indices":1}}]}}],
-"buffers":[{{"byteLength":{}}}],
+"buffers":[{{{}"byteLength":{}}}],
 "bufferViews":[{{"buffer":0,"byteOffset":0,"byteLength":{pos_len}}},{{"buffer":0,"byteOffset":{pos_len},"byteLength":{idx_len}}},{{"buffer":0,"byteOffset":{},"byteLength":12}}],
 "accessors":[{{"bufferView":0,"componentType":5126,"count":{},"type":"VEC3","min":[{},{},{}],"max":[{},{},{}]}},
 {{"bufferView":1,"componentType":5125,"count":{},"type":"SCALAR"}},{{"bufferView":2,"componentType":5125,"count":3,"type":"SCALAR"}}]}}"#,
@@ -53,6 +65,7 @@ fn glb(face: &FaceMesh, rotation: DQuat, scale: DVec3, translation: DVec3) -> Ve
         scale.x,
         scale.y,
         scale.z,
+        uri.map(|u| format!(r#""uri":"{u}","#)).unwrap_or_default(),
         bin.len(),
         pos_len + idx_len,
         face.vertices.len(),
@@ -64,7 +77,10 @@ fn glb(face: &FaceMesh, rotation: DQuat, scale: DVec3, translation: DVec3) -> Ve
         hi[2],
         face.triangles.len() * 3,
     );
-    let mut json = json.into_bytes();
+    (json, bin)
+}
+
+fn pack_glb(mut json: Vec<u8>, mut bin: Vec<u8>) -> Vec<u8> {
     while !json.len().is_multiple_of(4) {
         json.push(b' ');
     }
@@ -153,6 +169,30 @@ fn glb_node_transforms_and_named_mesh() {
             n.front_chain
         );
     }
+}
+
+#[test]
+fn gltf_with_external_buffer_loads_relative_to_its_file() {
+    let face = load_face(&asset("mediapipe_canonical_4loop.obj")).unwrap();
+    let (json, bin) = gltf_parts(
+        &face,
+        DQuat::IDENTITY,
+        DVec3::ONE,
+        DVec3::ZERO,
+        Some("face.bin"),
+    );
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("face.gltf"), json).unwrap();
+    std::fs::write(dir.path().join("face.bin"), bin).unwrap();
+    let g = load_face_mesh_named(&dir.path().join("face.gltf"), Some("face")).unwrap();
+    assert_eq!(g.triangles, face.triangles);
+    for (a, b) in g.vertices.iter().zip(&face.vertices) {
+        assert!(a.distance(*b) <= 1e-6 * 20.0);
+    }
+    // The buffer file missing is a glTF error, not a panic.
+    std::fs::remove_file(dir.path().join("face.bin")).unwrap();
+    let err = load_face_mesh_named(&dir.path().join("face.gltf"), Some("face")).unwrap_err();
+    assert!(matches!(err, PrepError::Gltf(_)), "{err}");
 }
 
 #[test]

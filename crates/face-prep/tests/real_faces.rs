@@ -427,3 +427,79 @@ fn prep_time_figure_for_the_largest_face() {
         t1.elapsed().as_secs_f64()
     );
 }
+
+/// The back face really is offset: away from the eye/mouth tapers, the rim and the nose, back vertices
+/// sit close to the requested offset from their front vertex (the clamp in nostrils, smoothing
+/// and local repair may thin it, never thicken it).
+#[test]
+fn back_face_keeps_its_offset_away_from_the_knife_edges() {
+    for (name, _, _) in FACES {
+        let (face, rig) = rig_of(name);
+        let s = &rig.shell;
+        let n = face.vertices.len();
+        let nt = face.triangles.len();
+        // No chord was split on these faces, so back element nt + t is face triangle t reversed.
+        assert_eq!(
+            s.tags[nt..2 * nt]
+                .iter()
+                .filter(|t| **t == ElementTag::Back)
+                .count(),
+            nt
+        );
+        let mut back_of = vec![None; n];
+        for (t, tri) in face.triangles.iter().enumerate() {
+            let b = s.triangles[nt + t];
+            assert_eq!(s.source_triangle[nt + t] as usize, t);
+            for (k, j) in [(0, 0), (1, 2), (2, 1)] {
+                back_of[tri[j] as usize] = Some(b[k]);
+            }
+        }
+        let inner: Vec<DVec3> = rig
+            .loops
+            .eye_l
+            .iter()
+            .chain(&rig.loops.eye_r)
+            .chain(&rig.loops.mouth)
+            .map(|&v| s.vertices[v as usize])
+            .collect();
+        let outer: HashSet<u32> = rig.loops.face.iter().copied().collect();
+        let target = rig.params.offset * rig.face_size;
+        let far = 2.0 * rig.params.taper * rig.face_size;
+        let mut ratios = Vec::new();
+        for v in 0..n {
+            let Some(b) = back_of[v] else { continue };
+            let p = s.vertices[v];
+            let d = s.vertices[b as usize].distance(p);
+            assert!(
+                d <= target * (1.0 + 1e-9),
+                "{name}: vertex {v} offset {d} > {target}"
+            );
+            // The nose is thin tissue around deep nostrils: the clamp keeps the back face inside
+            // it on purpose (those back elements are skull anyway).
+            let in_nose = rig.boxes.nose.contains(p.truncate());
+            if in_nose || outer.contains(&(v as u32)) || inner.iter().any(|q| q.distance(p) < far) {
+                continue;
+            }
+            ratios.push(d / target);
+        }
+        ratios.sort_by(f64::total_cmp);
+        let thin = ratios.iter().filter(|&&r| r < 0.5).count();
+        eprintln!(
+            "{name}: offset/target over {} vertices: min {:.3}, 5% {:.3}, median {:.3}; {thin} below 0.5",
+            ratios.len(),
+            ratios[0],
+            ratios[ratios.len() / 20],
+            ratios[ratios.len() / 2]
+        );
+        assert!(
+            ratios[ratios.len() / 2] > 0.75,
+            "{name}: median offset ratio {}",
+            ratios[ratios.len() / 2]
+        );
+        assert!(
+            thin * 50 <= ratios.len(),
+            "{name}: {thin} of {} vertices below half the offset",
+            ratios.len()
+        );
+    }
+}
