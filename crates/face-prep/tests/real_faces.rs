@@ -466,8 +466,8 @@ fn back_face_keeps_its_offset_away_from_the_knife_edges() {
         let target = rig.params.offset * rig.face_size;
         let far = 2.0 * rig.params.taper * rig.face_size;
         let mut ratios = Vec::new();
-        for v in 0..n {
-            let Some(b) = back_of[v] else { continue };
+        for (v, b) in back_of.iter().enumerate() {
+            let Some(b) = *b else { continue };
             let p = s.vertices[v];
             let d = s.vertices[b as usize].distance(p);
             assert!(
