@@ -6,7 +6,7 @@ use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use eframe::egui;
-use face_prep::FaceMesh;
+use face_prep::{Box2, FaceMesh, FeatureBoxes};
 use facebem::Control;
 use facebem::MuscleBasis;
 use facebem::open::{CacheStatus, Opened};
@@ -132,6 +132,7 @@ pub struct ViewerApp {
     export_dir: String,
     selection: Option<Selection>,
     edit_target: usize,
+    box_edit: Option<[Box2; 4]>,
     viewport_rect: Option<egui::Rect>,
     render_state: Option<egui_wgpu::RenderState>,
     has_wgpu: bool,
@@ -176,6 +177,7 @@ impl ViewerApp {
                 .unwrap_or_else(|_| ".".to_owned()),
             selection: None,
             edit_target: 0,
+            box_edit: None,
             viewport_rect: None,
             render_state: cc.wgpu_render_state.clone(),
             has_wgpu,
@@ -256,6 +258,9 @@ impl ViewerApp {
         });
         self.next_topology_id += 1;
         self.selection = None;
+        if reframe {
+            self.box_edit = None;
+        }
         self.refresh_overlays();
         self.repose();
         if let Some(name) = self.options.preset.clone()
@@ -410,6 +415,14 @@ impl ViewerApp {
     /// Computes (or loads from the cache) the rig of the displayed face with the current
     /// parameters, in the background. The displayed rig stays usable until the new one is ready.
     pub fn rebuild_rig(&mut self, ctx: &egui::Context) {
+        self.rebuild_rig_with_boxes(ctx, None);
+    }
+
+    /// Like [`ViewerApp::rebuild_rig`], with the muscles placed in user-edited feature boxes
+    /// (canonical frame). The pipeline has no box parameter yet, so the boxes re-place the
+    /// muscles (passed to it as a muscle override) while the skull keeps following the
+    /// automatic boxes.
+    pub fn rebuild_rig_with_boxes(&mut self, ctx: &egui::Context, boxes: Option<FeatureBoxes>) {
         let Some(face) = &self.face else { return };
         let Some(source) = face.source.clone() else {
             self.error("This face has no source mesh to build a rig from".to_owned());
@@ -420,8 +433,7 @@ impl ViewerApp {
             old.job.control().cancel();
         }
         let dir = self.cache_dir();
-        let params = self.params.clone();
-        let cache_path = source::cache_file_for(&dir, &source.0, &params);
+        let mut params = self.params.clone();
         let control = Control::new();
         let worker_control = control.clone();
         let name = face.name.clone();
@@ -440,6 +452,15 @@ impl ViewerApp {
                 ctl.report(&format!("cache folder: {e}"), 0.0);
             }
             let (mesh, obj) = &*source;
+            if let Some(boxes) = boxes {
+                ctl.report("muscles in the edited boxes", 0.0);
+                let prepared = facebem::prepare(mesh, &params).map_err(|e| e.to_string())?;
+                let rig =
+                    face_prep::FaceRig::build_with_boxes(&prepared.simulated, &params.rig, boxes)
+                        .map_err(|e| format!("feature boxes: {e}"))?;
+                params.muscles = Some(rig.muscles);
+            }
+            let cache_path = source::cache_file_for(&dir, mesh, &params);
             facebem::open::load_or_build(mesh, obj.clone(), &params, &cache_path, &control)
                 .map_err(|e| e.to_string())
         });
@@ -535,7 +556,14 @@ impl ViewerApp {
         let selected_element = self.selection.as_ref().and_then(|s| s.element);
         if let Some(face) = &self.face {
             if let (Some(model), Some(geo)) = (&face.model, &face.rig_geometry) {
-                lines = overlay_lines(&model.rig, geo, &self.overlays, selected_element);
+                let edited = self.edited_boxes().and_then(Result::ok);
+                lines = overlay_lines(
+                    &model.rig,
+                    geo,
+                    &self.overlays,
+                    selected_element,
+                    edited.as_ref(),
+                );
             }
             // Without a rig element, outline the picked triangle of the displayed mesh.
             if let Some(sel) = &self.selection
@@ -835,6 +863,89 @@ impl ViewerApp {
         ));
     }
 
+    /// The four measured feature boxes being edited (face, eye L, eye R, mouth; canonical
+    /// frame), if the box editor is open.
+    pub fn box_edit_mut(&mut self) -> Option<&mut [Box2; 4]> {
+        self.box_edit.as_mut()
+    }
+
+    /// Opens the box editor on the rig's current boxes (no-op without a rig).
+    pub fn start_box_edit(&mut self) {
+        if self.box_edit.is_none()
+            && let Some(m) = self.model()
+        {
+            let b = m.rig.boxes;
+            self.box_edit = Some([b.face, b.eye_l, b.eye_r, b.mouth]);
+        }
+        self.refresh_overlays();
+    }
+
+    /// The edited boxes with the derived nose and skull boxes, or why they are invalid.
+    pub fn edited_boxes(&self) -> Option<Result<FeatureBoxes, String>> {
+        self.box_edit
+            .map(|[f, l, r, m]| FeatureBoxes::derive(f, l, r, m).map_err(|e| e.to_string()))
+    }
+
+    /// Rebuilds the rig with the edited boxes (see [`ViewerApp::rebuild_rig_with_boxes`]).
+    pub fn apply_box_edit(&mut self, ctx: &egui::Context) {
+        match self.edited_boxes() {
+            Some(Ok(b)) => self.rebuild_rig_with_boxes(ctx, Some(b)),
+            Some(Err(e)) => self.error(format!("Feature boxes: {e}")),
+            None => {}
+        }
+    }
+
+    fn box_edit_ui(&mut self, ui: &mut egui::Ui) {
+        let Some(size) = self.model().map(|m| m.rig.face_size) else {
+            return;
+        };
+        let mut changed = false;
+        let mut apply = false;
+        let mut revert = false;
+        egui::CollapsingHeader::new("Edit feature boxes").show(ui, |ui| {
+            if self.box_edit.is_none() {
+                self.start_box_edit();
+            }
+            let Some(boxes) = &mut self.box_edit else {
+                return;
+            };
+            ui.label("min x, min y, max x, max y (canonical frame, face units)");
+            let speed = 0.002 * size;
+            for (name, b) in ["Face", "Eye L", "Eye R", "Mouth"]
+                .iter()
+                .zip(boxes.iter_mut())
+            {
+                ui.horizontal(|ui| {
+                    ui.label(*name);
+                    let fields = [&mut b.min.x, &mut b.min.y, &mut b.max.x, &mut b.max.y];
+                    for (v, what) in fields.into_iter().zip(["min x", "min y", "max x", "max y"]) {
+                        let r = ui.add(egui::DragValue::new(v).speed(speed).max_decimals(3));
+                        ui.ctx().accesskit_node_builder(r.id, |node| {
+                            node.set_label(format!("{name} {what}"));
+                        });
+                        changed |= r.changed();
+                    }
+                });
+            }
+            ui.horizontal(|ui| {
+                apply = ui.button("Apply boxes").clicked();
+                revert = ui.button("Revert boxes").clicked();
+            });
+        });
+        if let Some(Err(e)) = self.edited_boxes() {
+            ui.colored_label(egui::Color32::from_rgb(235, 90, 80), e);
+        }
+        if revert {
+            self.box_edit = None;
+            self.start_box_edit();
+        } else if changed {
+            self.refresh_overlays();
+        }
+        if apply {
+            self.apply_box_edit(ui.ctx());
+        }
+    }
+
     /// The muscles the next rebuild will use (edited ones, or the rig's).
     pub fn pending_muscles(&self) -> Option<&[face_prep::Muscle]> {
         match &self.params.muscles {
@@ -876,6 +987,7 @@ impl ViewerApp {
                 self.load_muscle_file(ui.ctx());
             }
         });
+        self.box_edit_ui(ui);
         if let Some(m) = self.model() {
             ui.label(format!(
                 "{} shell elements, {} muscles, {} skull elements",

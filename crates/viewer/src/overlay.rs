@@ -2,7 +2,7 @@
 //! elements, feature boxes and the selected element. Built from the rig (canonical frame) and
 //! carried to the user's frame with `input_from_canonical`.
 
-use face_prep::{Box2, FaceRig};
+use face_prep::{Box2, FaceRig, FeatureBoxes};
 use glam::{DAffine3, DVec3};
 
 use crate::renderer::LineVertex;
@@ -152,11 +152,13 @@ fn box_lines(out: &mut Vec<LineVertex>, geo: &RigGeometry, b: &Box2, z: f64, col
 }
 
 /// All overlay lines for `rig` with `options`; `selected` (a shell element) is outlined in yellow.
+/// `boxes` replaces the rig's feature boxes (while the user edits them).
 pub fn overlay_lines(
     rig: &FaceRig,
     geo: &RigGeometry,
     options: &OverlayOptions,
     selected: Option<u32>,
+    boxes: Option<&FeatureBoxes>,
 ) -> Vec<LineVertex> {
     let mut out = Vec::new();
     // Canonical +z (the face looks that way) in the user's frame: the plane of arrow heads.
@@ -192,7 +194,7 @@ pub fn overlay_lines(
             .map(|p| p.z)
             .fold(f64::NEG_INFINITY, f64::max);
         let z = if z.is_finite() { z } else { 0.0 };
-        let b = &rig.boxes;
+        let b = boxes.unwrap_or(&rig.boxes);
         box_lines(&mut out, geo, &b.face, z, [0.95, 0.95, 0.95, 0.9]);
         box_lines(&mut out, geo, &b.eye_l, z, [0.2, 0.9, 0.95, 0.9]);
         box_lines(&mut out, geo, &b.eye_r, z, [0.2, 0.9, 0.95, 0.9]);

@@ -447,3 +447,91 @@ fn editing_muscles_saving_the_muscle_file_and_rebuilding_with_a_new_offset() {
         "one cache file per offset"
     );
 }
+
+#[test]
+fn edited_feature_boxes_re_place_the_muscles_and_invalid_boxes_are_refused() {
+    let cache = tempfile::tempdir().unwrap();
+    let options = viewer::ViewerOptions {
+        cache_dir: Some(cache.path().to_path_buf()),
+        ..Default::default()
+    };
+    let mut harness = egui_kittest::Harness::builder()
+        .with_size([1100.0, 1100.0])
+        .wgpu()
+        .build_eframe(move |cc| viewer::ViewerApp::new(cc, options.clone()));
+    common::wait_idle(&mut harness);
+    let model = harness.state().model().expect("rig computed").clone();
+
+    harness.get_by_label("Feature boxes").click();
+    harness.get_by_label("Edit feature boxes").click();
+    harness.run();
+    let b = model.rig.boxes;
+    assert_eq!(
+        harness.state_mut().box_edit_mut().map(|e| *e),
+        Some([b.face, b.eye_l, b.eye_r, b.mouth])
+    );
+    let lines_before = harness.state().overlay_line_vertices().to_vec();
+
+    // Move the mouth box down by 8% of the face size and apply.
+    let d = 0.08 * model.rig.face_size;
+    harness
+        .get_by_label("Mouth min y")
+        .set_value_accesskit(b.mouth.min.y - d);
+    harness.run();
+    harness
+        .get_by_label("Mouth max y")
+        .set_value_accesskit(b.mouth.max.y - d);
+    harness.run();
+    let edited = harness.state_mut().box_edit_mut().unwrap()[3];
+    assert!(
+        (edited.min.y - (b.mouth.min.y - d)).abs() < 1e-9,
+        "{edited:?}"
+    );
+    assert!(
+        (edited.max.y - (b.mouth.max.y - d)).abs() < 1e-9,
+        "{edited:?}"
+    );
+    harness.get_by_label("Apply boxes").click();
+    harness.step();
+    assert!(harness.state().is_rigging());
+    common::wait_idle(&mut harness);
+    let msg = harness.state().message().cloned().unwrap();
+    assert!(!msg.is_error, "{}", msg.text);
+    let rebuilt = harness.state().model().unwrap().clone();
+    let muscles = rebuilt
+        .params
+        .muscles
+        .as_ref()
+        .expect("muscles from the edited boxes");
+    assert_eq!(muscles, &rebuilt.rig.muscles);
+    let moved = muscles
+        .iter()
+        .zip(&model.rig.muscles)
+        .filter(|(a, b)| a.front_chain != b.front_chain)
+        .count();
+    assert!(
+        moved >= 2,
+        "only {moved} muscles changed with the mouth box"
+    );
+    assert_ne!(rebuilt.basis.displacements, model.basis.displacements);
+    // The overlay shows the edited boxes.
+    assert_ne!(
+        harness.state().overlay_line_vertices(),
+        lines_before.as_slice()
+    );
+
+    // Inverted eye box: refused with a message, no rebuild.
+    {
+        let edit = harness.state_mut().box_edit_mut().unwrap();
+        std::mem::swap(&mut edit[1].min.x, &mut edit[1].max.x);
+    }
+    harness.get_by_label("Apply boxes").click();
+    harness.step();
+    assert!(!harness.state().is_rigging());
+    let msg = harness.state().message().cloned().unwrap();
+    assert!(
+        msg.is_error && msg.text.contains("Feature boxes"),
+        "{}",
+        msg.text
+    );
+}
