@@ -1,4 +1,28 @@
 //! The closed elastic shell (thesis ch. 5): front face, offset back face, rim strip.
+//!
+//! Construction, all lengths absolute ([`ShellDims`], derived from [`crate::RigParams`]):
+//!
+//! 1. Offset direction per vertex: the area-weighted vertex normal, or, where an incident
+//!    triangle disagrees with it (folds such as mouth corners), the candidate direction with the
+//!    best worst-case agreement ([`offset_directions`]).
+//! 2. Target inward displacement: `offset` for interior vertices, tapered to zero (smoothstep
+//!    over `taper`, measured along mesh edges) toward the eye and mouth contours, which stay
+//!    fixed as knife edges; `thickness` for the outer contour, whose back copy closes the rim.
+//! 3. A few Laplacian smoothing passes of the displacement field; any vertex whose displacement
+//!    no longer goes behind all of its incident front triangles falls back to step 1's direction.
+//! 4. Each displacement is clamped to `clamp_fraction` of the free distance to the front surface
+//!    along it (nostrils, rolled lips).
+//! 5. Back triangles are the front ones reversed; an interior edge joining two eye/mouth
+//!    contour vertices (a "chord") would coincide with its front twin, so on the back it is split
+//!    at a displaced mid-point. The rim joins each outer-contour edge to its back copy.
+//! 6. Local repair: back/rim elements found intersecting anything (BVH triangle–triangle test)
+//!    get their moved vertices redirected, then their offset halved, for a few rounds; vertices
+//!    still intersecting afterwards sit where the input itself overlaps and keep their offset.
+//!
+//! Vertex layout: face vertices `0..n`, then back copies of every vertex not on an eye or mouth
+//! contour (outer contour copies included) in face order, then chord mid-points. Element
+//! layout: front triangles `0..f`, back triangles (in face-triangle order, split ones
+//! contiguous), rim triangles (two per outer-contour edge, in loop order).
 
 use crate::bvh::{TriangleBvh, segment_crosses_triangle};
 use crate::orient::FaceLoops;
