@@ -2,7 +2,7 @@
 //! elements, feature boxes and the selected element. Built from the rig (canonical frame) and
 //! carried to the user's frame with `input_from_canonical`.
 
-use face_prep::{Box2, FaceRig, FeatureBoxes};
+use face_prep::{Box2, ElementTag, FaceRig, FeatureBoxes};
 use glam::{DAffine3, DVec3};
 
 use crate::renderer::LineVertex;
@@ -16,7 +16,8 @@ pub struct OverlayOptions {
     pub skull: bool,
     /// The feature boxes (face, eyes, mouth, nose, skull), in the front plane.
     pub boxes: bool,
-    /// Also show what lies behind the front face: back chains, back and rim elements.
+    /// Also show what lies behind the front face: back chains and the edges of the back and
+    /// rim elements (drawn through the face).
     pub whole_shell: bool,
 }
 
@@ -166,6 +167,19 @@ pub fn overlay_lines(
         .input_from_canonical
         .transform_vector3(DVec3::Z)
         .normalize_or_zero();
+    if options.whole_shell {
+        // The rest of the closed shell: back and rim element edges, faint.
+        let col = [0.6, 0.6, 0.65, 0.25];
+        for (e, tag) in rig.shell.tags.iter().enumerate() {
+            if *tag != ElementTag::Front
+                && let Some([a, b, c]) = geo.corners(rig, e as u32)
+            {
+                push_line(&mut out, a, b, col);
+                push_line(&mut out, b, c, col);
+                push_line(&mut out, c, a, col);
+            }
+        }
+    }
     if options.skull {
         for &e in &rig.skull {
             if let Some([a, b, c]) = geo.corners(rig, e) {
@@ -223,4 +237,70 @@ pub fn muscles_of_element(rig: &FaceRig, e: u32) -> Vec<String> {
                 .map_or_else(|| m.name.clone(), |k| k.display_name().to_owned())
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn overlays_of_the_default_rig_follow_the_options() {
+        let (mesh, _) = facebem::open::read_face(&crate::source::default_face_path()).unwrap();
+        let rig = facebem::prep_rig(&mesh, &facebem::PipelineParams::default()).unwrap();
+        let geo = RigGeometry::new(&rig);
+        // Front shell vertices are the face's vertices, back in the user's frame.
+        for (p, q) in geo.vertices.iter().zip(&mesh.vertices) {
+            assert!((*p - *q).length() < 1e-9 * (1.0 + q.length()), "{p} vs {q}");
+        }
+        let none = OverlayOptions {
+            muscles: false,
+            skull: false,
+            boxes: false,
+            whole_shell: false,
+        };
+        assert!(overlay_lines(&rig, &geo, &none, None, None).is_empty());
+        let muscles = overlay_lines(
+            &rig,
+            &geo,
+            &OverlayOptions {
+                muscles: true,
+                ..none
+            },
+            None,
+            None,
+        );
+        // Per muscle: (chain length − 1) segments + 2 arrow-head strokes, 2 vertices each.
+        let expected: usize = rig
+            .muscles
+            .iter()
+            .filter(|m| m.front_chain.len() >= 2)
+            .map(|m| 2 * (m.front_chain.len() - 1 + 2))
+            .sum();
+        assert_eq!(muscles.len(), expected);
+        let boxes = overlay_lines(
+            &rig,
+            &geo,
+            &OverlayOptions {
+                boxes: true,
+                ..none
+            },
+            None,
+            None,
+        );
+        assert_eq!(boxes.len(), 6 * 4 * 2);
+        let skull = overlay_lines(
+            &rig,
+            &geo,
+            &OverlayOptions {
+                skull: true,
+                ..none
+            },
+            None,
+            None,
+        );
+        assert_eq!(skull.len(), rig.skull.len() * 6);
+        let selected = overlay_lines(&rig, &geo, &none, Some(0), None);
+        assert_eq!(selected.len(), 6);
+        assert!(overlay_lines(&rig, &geo, &none, Some(u32::MAX), None).is_empty());
+    }
 }
