@@ -91,3 +91,28 @@ pub fn hollow_sphere(inner: f64, outer: f64, subdivisions: u32) -> Result<Surfac
     triangles.extend(to.into_iter().map(|t| t.map(|i| i + offset)));
     SurfaceMesh::new(vertices, triangles)
 }
+
+/// Torus about the z axis (major radius `major`, tube radius `minor`) with `2·around·tube`
+/// triangles, outward oriented: a closed surface of any element count (used by the benchmark).
+pub fn torus(major: f64, minor: f64, around: u32, tube: u32) -> Result<SurfaceMesh, MeshError> {
+    use std::f64::consts::TAU;
+    let mut vertices = Vec::with_capacity((around * tube) as usize);
+    for i in 0..around {
+        let phi = TAU * i as f64 / around as f64;
+        for j in 0..tube {
+            let theta = TAU * j as f64 / tube as f64;
+            let rr = major + minor * theta.cos();
+            vertices.push(DVec3::new(rr * phi.cos(), rr * phi.sin(), minor * theta.sin()));
+        }
+    }
+    let id = |i: u32, j: u32| (i % around) * tube + (j % tube);
+    let mut triangles = Vec::with_capacity((2 * around * tube) as usize);
+    for i in 0..around {
+        for j in 0..tube {
+            let (a, b, c, d) = (id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
+            triangles.push([a, b, c]);
+            triangles.push([a, c, d]);
+        }
+    }
+    SurfaceMesh::new(vertices, triangles)
+}
