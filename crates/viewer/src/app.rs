@@ -11,15 +11,20 @@ use facebem::Control;
 use facebem::MuscleBasis;
 use facebem::open::{CacheStatus, Opened};
 use facebem::{FaceModel, PipelineParams};
-use glam::{DVec3, Vec2};
+use glam::DVec3;
 
 use crate::camera::OrbitCamera;
+pub use crate::export::ExportKind;
+use crate::export::{ExportRequest, write_export};
 use crate::job::Job;
-use crate::overlay::{OverlayOptions, RigGeometry, muscles_of_element, overlay_lines};
-use crate::picking::{TriangleHit, pick_triangle};
+use crate::overlay::{OverlayOptions, RigGeometry, overlay_lines};
+use crate::picking::TriangleHit;
 use crate::posed_mesh::{MeshVertex, PosedMesh, bounding_sphere, edge_indices};
-use crate::renderer::{LineVertex, ReadBackError, SceneFrame, SceneUniforms, ViewportCallback};
+use crate::renderer::{LineVertex, ReadBackError};
 use crate::source;
+
+mod panels;
+mod viewport;
 
 /// Viewport clear colour (display values, written as is).
 pub const BACKGROUND: [f32; 3] = [0.11, 0.12, 0.14];
@@ -42,29 +47,6 @@ pub struct ViewerOptions {
     pub preset: Option<String>,
     /// Start with no face and no job (tests that install a basis themselves).
     pub start_empty: bool,
-}
-
-/// What an export button writes.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum ExportKind {
-    /// `<name>_pose.obj`: the current pose (in the user's own OBJ layout when the face came
-    /// from an OBJ file).
-    ObjPose,
-    /// `<name>.glb`: glTF 2.0 with one morph target per muscle and preset.
-    Gltf,
-    /// `<name>.muscles`: the rig's muscle file (thesis format).
-    MuscleFile,
-}
-
-impl ExportKind {
-    /// Button label.
-    pub fn label(self) -> &'static str {
-        match self {
-            ExportKind::ObjPose => "Export OBJ pose",
-            ExportKind::Gltf => "Export glTF",
-            ExportKind::MuscleFile => "Save muscle file",
-        }
-    }
 }
 
 /// The face currently displayed.
@@ -492,41 +474,14 @@ impl ViewerApp {
         let sliders = self.sliders.clone();
         let job = Job::spawn(kind.label(), Some(ctx.clone()), move |ctl| {
             ctl.report("writing", 0.0);
-            let path = match kind {
-                ExportKind::ObjPose => {
-                    let path = dir.join(format!("{stem}_pose.obj"));
-                    let posed = basis.pose(&sliders).map_err(|e| e.to_string())?;
-                    let text = match model.as_deref() {
-                        Some(FaceModel {
-                            obj_source: Some(obj),
-                            mesh,
-                            ..
-                        }) => facebem::export::obj::pose_from_template(
-                            obj,
-                            &mesh.input_to_vertex,
-                            &posed,
-                        )
-                        .map_err(|e| e.to_string())?,
-                        _ => facebem::export::obj::plain_obj(&posed, &basis.triangles),
-                    };
-                    facebem::write_atomic(&path, text.as_bytes()).map_err(|e| e.to_string())?;
-                    path
-                }
-                ExportKind::Gltf => {
-                    let path = dir.join(format!("{stem}.glb"));
-                    let params = facebem::export::GltfParams::default();
-                    facebem::export::write_gltf(&path, &basis, &params)
-                        .map_err(|e| e.to_string())?;
-                    path
-                }
-                ExportKind::MuscleFile => {
-                    let path = dir.join(format!("{stem}.muscles"));
-                    let model = model.ok_or("the rig is not computed yet")?;
-                    face_prep::muscle_file::save(&path, &model.rig.muscles)
-                        .map_err(|e| e.to_string())?;
-                    path
-                }
+            let request = ExportRequest {
+                dir,
+                stem,
+                basis,
+                model,
+                sliders,
             };
+            let path = write_export(kind, &request).map_err(|e| e.to_string())?;
             Ok(format!("Exported {}", path.display()))
         });
         self.exporting = Some(job);
@@ -678,164 +633,6 @@ impl ViewerApp {
         }
     }
 
-    fn toolbar(&mut self, ui: &mut egui::Ui) {
-        ui.horizontal(|ui| {
-            ui.label("File:");
-            let edit = egui::TextEdit::singleline(&mut self.open_path)
-                .hint_text("face.obj / face.glb / saved .rig")
-                .desired_width(320.0);
-            let r = ui.add(edit).labelled_by(ui.label("Path").id);
-            let enter = r.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
-            if ui.button("Open").clicked() || enter {
-                let path = PathBuf::from(self.open_path.trim());
-                self.open(ui.ctx(), path);
-            }
-            if ui.button("Open default face").clicked() {
-                self.open_default_face(ui.ctx());
-            }
-        });
-        if let Some(m) = &self.message {
-            let color = if m.is_error {
-                egui::Color32::from_rgb(235, 90, 80)
-            } else {
-                ui.visuals().text_color()
-            };
-            ui.colored_label(color, &m.text);
-        }
-    }
-
-    fn sliders_ui(&mut self, ui: &mut egui::Ui) {
-        let Some(face) = &self.face else {
-            ui.label("No face loaded.");
-            return;
-        };
-        ui.heading(&face.name);
-        ui.label(format!(
-            "{} vertices, {} triangles",
-            face.basis.neutral.len(),
-            face.basis.triangles.len()
-        ));
-        ui.separator();
-        ui.strong("Muscles (−1 contracts … +1 relaxes)");
-        let ids = face.basis.muscle_ids.clone();
-        if ids.is_empty() {
-            ui.label("The muscle rig is not computed yet.");
-        }
-        let mut changed = false;
-        for (id, value) in ids.iter().zip(self.sliders.iter_mut()) {
-            let name = face_prep::MuscleKind::from_id(id).map_or(id.as_str(), |m| m.display_name());
-            changed |= ui
-                .add(egui::Slider::new(value, -1.0..=1.0).text(name))
-                .changed();
-        }
-        ui.horizontal_wrapped(|ui| {
-            let enabled = !ids.is_empty();
-            if ui
-                .add_enabled(enabled, egui::Button::new("Reset muscles"))
-                .clicked()
-            {
-                self.sliders.iter_mut().for_each(|s| *s = 0.0);
-                changed = true;
-            }
-            for preset in facebem::presets::ALL.iter().filter(|p| p.name != "neutral") {
-                let button = egui::Button::new(preset_label(preset.name));
-                let r = ui
-                    .add_enabled(enabled, button)
-                    .on_hover_text(format!("{} ({})", preset.description, preset.action_units));
-                if r.clicked() {
-                    self.sliders = preset.sliders_for(&ids);
-                    changed = true;
-                }
-            }
-        });
-        if changed {
-            self.repose();
-        }
-    }
-
-    fn view_ui(&mut self, ui: &mut egui::Ui) {
-        ui.strong("View");
-        ui.horizontal(|ui| {
-            ui.checkbox(&mut self.shaded, "Shaded");
-            ui.checkbox(&mut self.wireframe, "Wireframe");
-            if ui.button("Reset view").clicked() {
-                self.camera.reset();
-            }
-        });
-        let mut o = self.overlays;
-        ui.horizontal_wrapped(|ui| {
-            ui.checkbox(&mut o.muscles, "Muscles");
-            ui.checkbox(&mut o.skull, "Skull");
-            ui.checkbox(&mut o.boxes, "Feature boxes");
-            ui.checkbox(&mut o.whole_shell, "Whole shell");
-        });
-        if o != self.overlays {
-            self.set_overlays(o);
-        }
-        ui.label("Drag: orbit · right/middle or shift-drag: pan · wheel: zoom · click: pick");
-        if let Some(sel) = &self.selection {
-            ui.label(format!("Selected triangle {}", sel.hit.triangle));
-            match sel.element {
-                Some(e) if sel.muscles.is_empty() => {
-                    ui.label(format!("Element {e}: in no muscle"));
-                }
-                Some(e) => {
-                    ui.label(format!("Element {e}: {}", sel.muscles.join(", ")));
-                }
-                None => {}
-            }
-        }
-        self.muscle_edit_ui(ui);
-    }
-
-    fn muscle_edit_ui(&mut self, ui: &mut egui::Ui) {
-        let Some(element) = self.selection.as_ref().and_then(|s| s.element) else {
-            return;
-        };
-        let Some(model) = self.model() else { return };
-        let names: Vec<String> = self
-            .params
-            .muscles
-            .as_ref()
-            .unwrap_or(&model.rig.muscles)
-            .iter()
-            .map(muscle_label)
-            .collect();
-        if names.is_empty() {
-            return;
-        }
-        self.edit_target = self.edit_target.min(names.len() - 1);
-        let mut add = false;
-        let mut remove = false;
-        ui.horizontal_wrapped(|ui| {
-            egui::ComboBox::from_label("Target muscle")
-                .selected_text(&names[self.edit_target])
-                .show_ui(ui, |ui| {
-                    for (i, n) in names.iter().enumerate() {
-                        ui.selectable_value(&mut self.edit_target, i, n);
-                    }
-                });
-            add = ui.button("Add element to muscle").clicked();
-            remove = ui.button("Remove element from muscles").clicked();
-        });
-        if add {
-            let target = self.edit_target;
-            self.edit_muscles(|muscles, geo, rig| {
-                if let Some(m) = muscles.get_mut(target) {
-                    insert_into_chain(&mut m.front_chain, element, |e| geo.centroid(rig, e));
-                }
-            });
-        }
-        if remove {
-            self.edit_muscles(|muscles, _, _| {
-                for m in muscles.iter_mut() {
-                    m.front_chain.retain(|&e| e != element);
-                    m.back_chain.retain(|&e| e != element);
-                }
-            });
-        }
-    }
-
     /// Applies `edit` to the muscles used for the next rebuild (a copy of the rig's muscles at
     /// first) and says so; "Rebuild rig" solves with them.
     fn edit_muscles(
@@ -895,106 +692,11 @@ impl ViewerApp {
         }
     }
 
-    fn box_edit_ui(&mut self, ui: &mut egui::Ui) {
-        let Some(size) = self.model().map(|m| m.rig.face_size) else {
-            return;
-        };
-        let mut changed = false;
-        let mut apply = false;
-        let mut revert = false;
-        egui::CollapsingHeader::new("Edit feature boxes").show(ui, |ui| {
-            if self.box_edit.is_none() {
-                self.start_box_edit();
-            }
-            let Some(boxes) = &mut self.box_edit else {
-                return;
-            };
-            ui.label("min x, min y, max x, max y (canonical frame, face units)");
-            let speed = 0.002 * size;
-            for (name, b) in ["Face", "Eye L", "Eye R", "Mouth"]
-                .iter()
-                .zip(boxes.iter_mut())
-            {
-                ui.horizontal(|ui| {
-                    ui.label(*name);
-                    let fields = [&mut b.min.x, &mut b.min.y, &mut b.max.x, &mut b.max.y];
-                    for (v, what) in fields.into_iter().zip(["min x", "min y", "max x", "max y"]) {
-                        let r = ui.add(egui::DragValue::new(v).speed(speed).max_decimals(3));
-                        ui.ctx().accesskit_node_builder(r.id, |node| {
-                            node.set_label(format!("{name} {what}"));
-                        });
-                        changed |= r.changed();
-                    }
-                });
-            }
-            ui.horizontal(|ui| {
-                apply = ui.button("Apply boxes").clicked();
-                revert = ui.button("Revert boxes").clicked();
-            });
-        });
-        if let Some(Err(e)) = self.edited_boxes() {
-            ui.colored_label(egui::Color32::from_rgb(235, 90, 80), e);
-        }
-        if revert {
-            self.box_edit = None;
-            self.start_box_edit();
-        } else if changed {
-            self.refresh_overlays();
-        }
-        if apply {
-            self.apply_box_edit(ui.ctx());
-        }
-    }
-
     /// The muscles the next rebuild will use (edited ones, or the rig's).
     pub fn pending_muscles(&self) -> Option<&[face_prep::Muscle]> {
         match &self.params.muscles {
             Some(m) => Some(m),
             None => self.model().map(|m| m.rig.muscles.as_slice()),
-        }
-    }
-
-    fn rig_ui(&mut self, ui: &mut egui::Ui) {
-        ui.strong("Rig");
-        let rig = &mut self.params.rig;
-        let mut offset = rig.offset;
-        let mut thickness = rig.thickness;
-        ui.add(
-            egui::Slider::new(&mut offset, 0.002..=0.1)
-                .logarithmic(true)
-                .text("Offset (× face size)"),
-        );
-        ui.add(
-            egui::Slider::new(&mut thickness, 0.002..=0.1)
-                .logarithmic(true)
-                .text("Thickness (× face size)"),
-        );
-        rig.offset = offset;
-        rig.thickness = thickness;
-        let has_source = self.face.as_ref().is_some_and(|f| f.source.is_some());
-        ui.horizontal(|ui| {
-            if ui
-                .add_enabled(has_source, egui::Button::new("Rebuild rig"))
-                .clicked()
-            {
-                self.rebuild_rig(ui.ctx());
-            }
-            if ui
-                .add_enabled(has_source, egui::Button::new("Load muscle file"))
-                .on_hover_text("Reads <Export folder>/<face>.muscles and rebuilds the rig with it")
-                .clicked()
-            {
-                self.load_muscle_file(ui.ctx());
-            }
-        });
-        self.box_edit_ui(ui);
-        if let Some(m) = self.model() {
-            ui.label(format!(
-                "{} shell elements, {} muscles, {} skull elements",
-                m.rig.shell.triangles.len(),
-                m.rig.muscles.len(),
-                m.rig.skull.len()
-            ));
         }
     }
 
@@ -1016,182 +718,6 @@ impl ViewerApp {
             }
             Err(e) => self.error(format!("Could not load the muscle file: {e}")),
         }
-    }
-
-    fn export_ui(&mut self, ui: &mut egui::Ui) {
-        ui.strong("Export");
-        ui.horizontal(|ui| {
-            let label = ui.label("Export folder");
-            ui.add(egui::TextEdit::singleline(&mut self.export_dir).desired_width(180.0))
-                .labelled_by(label.id);
-        });
-        ui.horizontal_wrapped(|ui| {
-            let idle = self.exporting.is_none();
-            let has_rig = self.model().is_some();
-            for kind in [
-                ExportKind::ObjPose,
-                ExportKind::Gltf,
-                ExportKind::MuscleFile,
-            ] {
-                let enabled = idle && (kind != ExportKind::MuscleFile || has_rig);
-                if ui
-                    .add_enabled(enabled, egui::Button::new(kind.label()))
-                    .clicked()
-                {
-                    self.export(ui.ctx(), kind);
-                }
-            }
-        });
-    }
-
-    fn status_bar(&mut self, ui: &mut egui::Ui) {
-        if let Some(job) = &self.exporting {
-            ui.horizontal(|ui| {
-                ui.spinner();
-                ui.label(job.label());
-            });
-        }
-        let job = match (&self.loading, &self.rigging) {
-            (Some(j), _) => Some((
-                j.label().to_owned(),
-                j.control().fraction(),
-                j.control().stage(),
-            )),
-            (None, Some(r)) => Some((
-                r.job.label().to_owned(),
-                r.job.control().fraction(),
-                r.job.control().stage(),
-            )),
-            (None, None) => None,
-        };
-        let Some((label, fraction, stage)) = job else {
-            ui.label(if self.has_wgpu {
-                "Ready"
-            } else {
-                "No wgpu device: 3D view disabled"
-            });
-            return;
-        };
-        let mut cancel = false;
-        ui.horizontal(|ui| {
-            ui.label(label);
-            ui.add(
-                egui::ProgressBar::new(fraction)
-                    .text(stage)
-                    .desired_width(260.0),
-            );
-            cancel = self.rigging.is_some() && ui.button("Cancel").clicked();
-        });
-        if cancel {
-            self.cancel_rig();
-        }
-    }
-
-    fn viewport(&mut self, ui: &mut egui::Ui) {
-        let size = ui.available_size();
-        let (rect, response) = ui.allocate_exact_size(size, egui::Sense::click_and_drag());
-        self.viewport_rect = Some(rect);
-        let aspect = rect.width() / rect.height().max(1.0);
-        let delta = response.drag_delta();
-        let pan = response.dragged_by(egui::PointerButton::Secondary)
-            || response.dragged_by(egui::PointerButton::Middle)
-            || (response.dragged_by(egui::PointerButton::Primary)
-                && ui.input(|i| i.modifiers.shift));
-        if pan {
-            self.camera.pan(Vec2::new(delta.x, delta.y), rect.height());
-        } else if response.dragged_by(egui::PointerButton::Primary) {
-            self.camera.orbit(-delta.x * 0.01, delta.y * 0.01);
-        }
-        if response.hovered() {
-            let scroll = ui.input(|i| i.smooth_scroll_delta.y);
-            if scroll != 0.0 {
-                self.camera.zoom((-scroll * 0.002).exp());
-            }
-        }
-        if response.clicked()
-            && let Some(pos) = response.interact_pointer_pos()
-        {
-            let ndc = Vec2::new(
-                (pos.x - rect.left()) / rect.width() * 2.0 - 1.0,
-                1.0 - (pos.y - rect.top()) / rect.height() * 2.0,
-            );
-            self.pick(ndc, aspect);
-        }
-        let Some(face) = &self.face else { return };
-        if self.uploaded_generation != self.posed.generation() {
-            self.uploaded_vertices = Arc::new(self.posed.vertices().to_vec());
-            self.uploaded_generation = self.posed.generation();
-        }
-        if !self.has_wgpu {
-            return;
-        }
-        let ppp = ui.ctx().pixels_per_point();
-        let size_px = [
-            (rect.width() * ppp).round().max(1.0) as u32,
-            (rect.height() * ppp).round().max(1.0) as u32,
-        ];
-        let wire_color = if self.shaded {
-            [0.15, 0.1, 0.08, 0.55]
-        } else {
-            [0.85, 0.85, 0.9, 1.0]
-        };
-        let frame = SceneFrame {
-            topology_id: face.topology_id,
-            triangles: Arc::clone(&face.triangles),
-            edges: Arc::clone(&face.edges),
-            pose_generation: self.uploaded_generation,
-            vertices: Arc::clone(&self.uploaded_vertices),
-            lines_generation: self.lines_generation,
-            lines: Arc::clone(&self.lines),
-            uniforms: SceneUniforms {
-                clip_from_world: self.camera.clip_from_world(aspect).to_cols_array_2d(),
-                eye: self.camera.eye().extend(1.0).to_array(),
-                base_color: SKIN,
-                wire_color,
-            },
-            shaded: self.shaded,
-            wireframe: self.wireframe || !self.shaded,
-            background: egui_wgpu::wgpu::Color {
-                r: BACKGROUND[0] as f64,
-                g: BACKGROUND[1] as f64,
-                b: BACKGROUND[2] as f64,
-                a: 1.0,
-            },
-        };
-        ui.painter().add(egui_wgpu::Callback::new_paint_callback(
-            rect,
-            ViewportCallback { frame, size_px },
-        ));
-        self.frames_with_face += 1;
-    }
-
-    fn pick(&mut self, ndc: Vec2, aspect: f32) {
-        let Some(face) = &self.face else { return };
-        let (o, d) = self.camera.ray_through(ndc, aspect);
-        let (o, d) = (o.as_dvec3(), d.as_dvec3());
-        let hit = pick_triangle(self.posed.positions_f64(), &face.basis.triangles, o, d);
-        self.selection = hit.map(|hit| {
-            // The rig's front elements (user frame, neutral): on a simplified large face they
-            // are not the user's triangles, so they are picked separately.
-            let element = match (&face.model, &face.rig_geometry) {
-                (Some(m), Some(geo)) => {
-                    let n = m.rig.face_triangle_count.min(m.rig.shell.triangles.len());
-                    pick_triangle(&geo.vertices, &m.rig.shell.triangles[..n], o, d)
-                        .map(|h| h.triangle as u32)
-                }
-                _ => None,
-            };
-            let muscles = match (&face.model, element) {
-                (Some(m), Some(e)) => muscles_of_element(&m.rig, e),
-                _ => Vec::new(),
-            };
-            Selection {
-                hit,
-                element,
-                muscles,
-            }
-        });
-        self.refresh_overlays();
     }
 
     fn automation(&mut self, ctx: &egui::Context) {
@@ -1274,50 +800,8 @@ pub fn preset_label(name: &str) -> String {
         .unwrap_or_default()
 }
 
-fn muscle_label(m: &face_prep::Muscle) -> String {
+/// Display name of a muscle (thesis name for the standard ones).
+pub(crate) fn muscle_label(m: &face_prep::Muscle) -> String {
     m.kind
         .map_or_else(|| m.name.clone(), |k| k.display_name().to_owned())
-}
-
-/// Inserts `element` into an ordered chain where it lengthens the chain's path the least
-/// (between two consecutive elements, or at either end); no-op if already present.
-///
-/// ```
-/// use glam::DVec3;
-/// let mut chain = vec![0, 2];
-/// let pos = |e: u32| Some(DVec3::new(e as f64, 0.0, 0.0));
-/// viewer::app::insert_into_chain(&mut chain, 1, pos);
-/// viewer::app::insert_into_chain(&mut chain, 3, pos);
-/// assert_eq!(chain, vec![0, 1, 2, 3]);
-/// ```
-pub fn insert_into_chain(
-    chain: &mut Vec<u32>,
-    element: u32,
-    centroid: impl Fn(u32) -> Option<DVec3>,
-) {
-    if chain.contains(&element) {
-        return;
-    }
-    let Some(p) = centroid(element) else { return };
-    let c: Vec<Option<DVec3>> = chain.iter().map(|&e| centroid(e)).collect();
-    let dist = |a: Option<DVec3>, b: DVec3| a.map_or(f64::INFINITY, |a| a.distance(b));
-    let mut best = (
-        chain.len(),
-        c.last().copied().flatten().map_or(0.0, |l| l.distance(p)),
-    );
-    if let Some(first) = c.first() {
-        let cost = dist(*first, p);
-        if cost < best.1 {
-            best = (0, cost);
-        }
-    }
-    for i in 1..c.len() {
-        if let (Some(a), Some(b)) = (c[i - 1], c[i]) {
-            let cost = a.distance(p) + p.distance(b) - a.distance(b);
-            if cost < best.1 {
-                best = (i, cost);
-            }
-        }
-    }
-    chain.insert(best.0, element);
 }

@@ -16,7 +16,9 @@
 
 pub mod app;
 pub mod camera;
+pub mod export;
 pub mod job;
+pub mod muscle_edit;
 pub mod overlay;
 pub mod picking;
 pub mod posed_mesh;

@@ -1,0 +1,332 @@
+//! The side, top and bottom panels of the viewer: file, muscles, view, rig, export, status.
+
+use std::path::PathBuf;
+
+use eframe::egui;
+
+use super::{ExportKind, ViewerApp, muscle_label, preset_label};
+use crate::muscle_edit::insert_into_chain;
+
+impl ViewerApp {
+    pub(super) fn toolbar(&mut self, ui: &mut egui::Ui) {
+        ui.horizontal(|ui| {
+            ui.label("File:");
+            let edit = egui::TextEdit::singleline(&mut self.open_path)
+                .hint_text("face.obj / face.glb / saved .rig")
+                .desired_width(320.0);
+            let r = ui.add(edit).labelled_by(ui.label("Path").id);
+            let enter = r.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
+            if ui.button("Open").clicked() || enter {
+                let path = PathBuf::from(self.open_path.trim());
+                self.open(ui.ctx(), path);
+            }
+            if ui.button("Open default face").clicked() {
+                self.open_default_face(ui.ctx());
+            }
+        });
+        if let Some(m) = &self.message {
+            let color = if m.is_error {
+                egui::Color32::from_rgb(235, 90, 80)
+            } else {
+                ui.visuals().text_color()
+            };
+            ui.colored_label(color, &m.text);
+        }
+    }
+
+    pub(super) fn sliders_ui(&mut self, ui: &mut egui::Ui) {
+        let Some(face) = &self.face else {
+            ui.label("No face loaded.");
+            return;
+        };
+        ui.heading(&face.name);
+        ui.label(format!(
+            "{} vertices, {} triangles",
+            face.basis.neutral.len(),
+            face.basis.triangles.len()
+        ));
+        ui.separator();
+        ui.strong("Muscles (−1 contracts … +1 relaxes)");
+        let ids = face.basis.muscle_ids.clone();
+        if ids.is_empty() {
+            ui.label("The muscle rig is not computed yet.");
+        }
+        let mut changed = false;
+        for (id, value) in ids.iter().zip(self.sliders.iter_mut()) {
+            let name = face_prep::MuscleKind::from_id(id).map_or(id.as_str(), |m| m.display_name());
+            changed |= ui
+                .add(egui::Slider::new(value, -1.0..=1.0).text(name))
+                .changed();
+        }
+        ui.horizontal_wrapped(|ui| {
+            let enabled = !ids.is_empty();
+            if ui
+                .add_enabled(enabled, egui::Button::new("Reset muscles"))
+                .clicked()
+            {
+                self.sliders.iter_mut().for_each(|s| *s = 0.0);
+                changed = true;
+            }
+            for preset in facebem::presets::ALL.iter().filter(|p| p.name != "neutral") {
+                let button = egui::Button::new(preset_label(preset.name));
+                let r = ui
+                    .add_enabled(enabled, button)
+                    .on_hover_text(format!("{} ({})", preset.description, preset.action_units));
+                if r.clicked() {
+                    self.sliders = preset.sliders_for(&ids);
+                    changed = true;
+                }
+            }
+        });
+        if changed {
+            self.repose();
+        }
+    }
+
+    pub(super) fn view_ui(&mut self, ui: &mut egui::Ui) {
+        ui.strong("View");
+        ui.horizontal(|ui| {
+            ui.checkbox(&mut self.shaded, "Shaded");
+            ui.checkbox(&mut self.wireframe, "Wireframe");
+            if ui.button("Reset view").clicked() {
+                self.camera.reset();
+            }
+        });
+        let mut o = self.overlays;
+        ui.horizontal_wrapped(|ui| {
+            ui.checkbox(&mut o.muscles, "Muscles");
+            ui.checkbox(&mut o.skull, "Skull");
+            ui.checkbox(&mut o.boxes, "Feature boxes");
+            ui.checkbox(&mut o.whole_shell, "Whole shell");
+        });
+        if o != self.overlays {
+            self.set_overlays(o);
+        }
+        ui.label("Drag: orbit · right/middle or shift-drag: pan · wheel: zoom · click: pick");
+        if let Some(sel) = &self.selection {
+            ui.label(format!("Selected triangle {}", sel.hit.triangle));
+            match sel.element {
+                Some(e) if sel.muscles.is_empty() => {
+                    ui.label(format!("Element {e}: in no muscle"));
+                }
+                Some(e) => {
+                    ui.label(format!("Element {e}: {}", sel.muscles.join(", ")));
+                }
+                None => {}
+            }
+        }
+        self.muscle_edit_ui(ui);
+    }
+
+    pub(super) fn muscle_edit_ui(&mut self, ui: &mut egui::Ui) {
+        let Some(element) = self.selection.as_ref().and_then(|s| s.element) else {
+            return;
+        };
+        let Some(model) = self.model() else { return };
+        let names: Vec<String> = self
+            .params
+            .muscles
+            .as_ref()
+            .unwrap_or(&model.rig.muscles)
+            .iter()
+            .map(muscle_label)
+            .collect();
+        if names.is_empty() {
+            return;
+        }
+        self.edit_target = self.edit_target.min(names.len() - 1);
+        let mut add = false;
+        let mut remove = false;
+        ui.horizontal_wrapped(|ui| {
+            egui::ComboBox::from_label("Target muscle")
+                .selected_text(&names[self.edit_target])
+                .show_ui(ui, |ui| {
+                    for (i, n) in names.iter().enumerate() {
+                        ui.selectable_value(&mut self.edit_target, i, n);
+                    }
+                });
+            add = ui.button("Add element to muscle").clicked();
+            remove = ui.button("Remove element from muscles").clicked();
+        });
+        if add {
+            let target = self.edit_target;
+            self.edit_muscles(|muscles, geo, rig| {
+                if let Some(m) = muscles.get_mut(target) {
+                    insert_into_chain(&mut m.front_chain, element, |e| geo.centroid(rig, e));
+                }
+            });
+        }
+        if remove {
+            self.edit_muscles(|muscles, _, _| {
+                for m in muscles.iter_mut() {
+                    m.front_chain.retain(|&e| e != element);
+                    m.back_chain.retain(|&e| e != element);
+                }
+            });
+        }
+    }
+
+    pub(super) fn rig_ui(&mut self, ui: &mut egui::Ui) {
+        ui.strong("Rig");
+        let rig = &mut self.params.rig;
+        let mut offset = rig.offset;
+        let mut thickness = rig.thickness;
+        ui.add(
+            egui::Slider::new(&mut offset, 0.002..=0.1)
+                .logarithmic(true)
+                .text("Offset (× face size)"),
+        );
+        ui.add(
+            egui::Slider::new(&mut thickness, 0.002..=0.1)
+                .logarithmic(true)
+                .text("Thickness (× face size)"),
+        );
+        rig.offset = offset;
+        rig.thickness = thickness;
+        let has_source = self.face.as_ref().is_some_and(|f| f.source.is_some());
+        ui.horizontal(|ui| {
+            if ui
+                .add_enabled(has_source, egui::Button::new("Rebuild rig"))
+                .clicked()
+            {
+                self.rebuild_rig(ui.ctx());
+            }
+            if ui
+                .add_enabled(has_source, egui::Button::new("Load muscle file"))
+                .on_hover_text("Reads <Export folder>/<face>.muscles and rebuilds the rig with it")
+                .clicked()
+            {
+                self.load_muscle_file(ui.ctx());
+            }
+        });
+        self.box_edit_ui(ui);
+        if let Some(m) = self.model() {
+            ui.label(format!(
+                "{} shell elements, {} muscles, {} skull elements",
+                m.rig.shell.triangles.len(),
+                m.rig.muscles.len(),
+                m.rig.skull.len()
+            ));
+        }
+    }
+
+    pub(super) fn box_edit_ui(&mut self, ui: &mut egui::Ui) {
+        let Some(size) = self.model().map(|m| m.rig.face_size) else {
+            return;
+        };
+        let mut changed = false;
+        let mut apply = false;
+        let mut revert = false;
+        egui::CollapsingHeader::new("Edit feature boxes").show(ui, |ui| {
+            if self.box_edit.is_none() {
+                self.start_box_edit();
+            }
+            let Some(boxes) = &mut self.box_edit else {
+                return;
+            };
+            ui.label("min x, min y, max x, max y (canonical frame, face units)");
+            let speed = 0.002 * size;
+            for (name, b) in ["Face", "Eye L", "Eye R", "Mouth"]
+                .iter()
+                .zip(boxes.iter_mut())
+            {
+                ui.horizontal(|ui| {
+                    ui.label(*name);
+                    let fields = [&mut b.min.x, &mut b.min.y, &mut b.max.x, &mut b.max.y];
+                    for (v, what) in fields.into_iter().zip(["min x", "min y", "max x", "max y"]) {
+                        let r = ui.add(egui::DragValue::new(v).speed(speed).max_decimals(3));
+                        ui.ctx().accesskit_node_builder(r.id, |node| {
+                            node.set_label(format!("{name} {what}"));
+                        });
+                        changed |= r.changed();
+                    }
+                });
+            }
+            ui.horizontal(|ui| {
+                apply = ui.button("Apply boxes").clicked();
+                revert = ui.button("Revert boxes").clicked();
+            });
+        });
+        if let Some(Err(e)) = self.edited_boxes() {
+            ui.colored_label(egui::Color32::from_rgb(235, 90, 80), e);
+        }
+        if revert {
+            self.box_edit = None;
+            self.start_box_edit();
+        } else if changed {
+            self.refresh_overlays();
+        }
+        if apply {
+            self.apply_box_edit(ui.ctx());
+        }
+    }
+
+    pub(super) fn export_ui(&mut self, ui: &mut egui::Ui) {
+        ui.strong("Export");
+        ui.horizontal(|ui| {
+            let label = ui.label("Export folder");
+            ui.add(egui::TextEdit::singleline(&mut self.export_dir).desired_width(180.0))
+                .labelled_by(label.id);
+        });
+        ui.horizontal_wrapped(|ui| {
+            let idle = self.exporting.is_none();
+            let has_rig = self.model().is_some();
+            for kind in [
+                ExportKind::ObjPose,
+                ExportKind::Gltf,
+                ExportKind::MuscleFile,
+            ] {
+                let enabled = idle && (kind != ExportKind::MuscleFile || has_rig);
+                if ui
+                    .add_enabled(enabled, egui::Button::new(kind.label()))
+                    .clicked()
+                {
+                    self.export(ui.ctx(), kind);
+                }
+            }
+        });
+    }
+
+    pub(super) fn status_bar(&mut self, ui: &mut egui::Ui) {
+        if let Some(job) = &self.exporting {
+            ui.horizontal(|ui| {
+                ui.spinner();
+                ui.label(job.label());
+            });
+        }
+        let job = match (&self.loading, &self.rigging) {
+            (Some(j), _) => Some((
+                j.label().to_owned(),
+                j.control().fraction(),
+                j.control().stage(),
+            )),
+            (None, Some(r)) => Some((
+                r.job.label().to_owned(),
+                r.job.control().fraction(),
+                r.job.control().stage(),
+            )),
+            (None, None) => None,
+        };
+        let Some((label, fraction, stage)) = job else {
+            ui.label(if self.has_wgpu {
+                "Ready"
+            } else {
+                "No wgpu device: 3D view disabled"
+            });
+            return;
+        };
+        let mut cancel = false;
+        ui.horizontal(|ui| {
+            ui.label(label);
+            ui.add(
+                egui::ProgressBar::new(fraction)
+                    .text(stage)
+                    .desired_width(260.0),
+            );
+            cancel = self.rigging.is_some() && ui.button("Cancel").clicked();
+        });
+        if cancel {
+            self.cancel_rig();
+        }
+    }
+}
