@@ -138,6 +138,26 @@ fn first_run_computes_and_caches_the_default_rig_and_the_second_run_loads_it() {
             .build_eframe(move |cc| viewer::ViewerApp::new(cc, options.clone()))
     };
     let mut first = start(options.clone());
+    // The neutral face appears while the rig is still being computed, with a progress bar:
+    // the UI thread is not blocked by the precompute.
+    let t0 = std::time::Instant::now();
+    while first.state().basis().is_none() {
+        assert!(
+            t0.elapsed() < std::time::Duration::from_secs(60),
+            "the face never appeared"
+        );
+        std::thread::sleep(std::time::Duration::from_millis(2));
+        first.step();
+    }
+    assert!(
+        first.state().is_rigging(),
+        "the rig is computed in the background"
+    );
+    assert_eq!(first.state().basis().unwrap().muscle_count(), 0);
+    assert_eq!(first.state().uploaded_vertices().len(), 468);
+    first.step();
+    first.get_by_role(Role::ProgressIndicator);
+    first.get_by_label("Cancel");
     common::wait_idle(&mut first);
     let msg = first.state().message().cloned().unwrap();
     assert!(!msg.is_error, "{}", msg.text);
