@@ -17,7 +17,9 @@ use rayon::prelude::*;
 use crate::kernels::{Block, KernelConstants};
 use crate::quadrature::ElementQuad;
 use crate::singular::g_diagonal;
-use crate::{BemError, Control, Loads, Material, QuadratureParams, SolveParams, Stage, SurfaceMesh};
+use crate::{
+    BemError, Control, Loads, Material, QuadratureParams, SolveParams, Stage, SurfaceMesh,
+};
 
 /// What to do with a problem that prescribes no displacement anywhere (rigid-body modes).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
@@ -169,10 +171,8 @@ impl LinearSystem {
         let qp = params.quadrature;
         control.report(Stage::Assembly, 0, n);
 
-        matrix
-            .par_col_chunks_mut(3)
-            .enumerate()
-            .try_for_each(|(j, block)| -> Result<(), BemError> {
+        matrix.par_col_chunks_mut(3).enumerate().try_for_each(
+            |(j, block)| -> Result<(), BemError> {
                 control.check()?;
                 let cols = three_columns(block).ok_or(BemError::NonFinite {
                     what: "column layout of K (not contiguous)",
@@ -208,11 +208,12 @@ impl LinearSystem {
                     modes.as_ref(),
                 )?;
                 let d = done.fetch_add(1, Ordering::Relaxed) + 1;
-                if d % step == 0 || d == n {
+                if d.is_multiple_of(step) || d == n {
                     control.report(Stage::Assembly, d, n);
                 }
                 Ok(())
-            })?;
+            },
+        )?;
 
         // reduce the per-thread partials
         let mut total = Partial::new(n, dof, rhs_count);
@@ -287,11 +288,11 @@ fn assemble_column(
     let q = &quads[j];
     let need_u = is_prescribed || !values.is_empty();
     let n = quads.len();
-    for i in 0..n {
+    for (i, &p) in centroids.iter().enumerate().take(n) {
         if i == j {
             continue;
         }
-        let m = q.moments(centroids[i], qp, need_u);
+        let m = q.moments(p, qp, need_u);
         let h = consts.t_block(&m, q.normal);
         let rs = &mut partial.row_sums[i];
         for a in 0..3 {
@@ -438,7 +439,12 @@ fn collect_points(
         let m01 = 0.5 * (c[0] + c[1]);
         let m12 = 0.5 * (c[1] + c[2]);
         let m20 = 0.5 * (c[2] + c[0]);
-        for sub in [[c[0], m01, m20], [m01, c[1], m12], [m20, m12, c[2]], [m01, m12, m20]] {
+        for sub in [
+            [c[0], m01, m20],
+            [m01, c[1], m12],
+            [m20, m12, c[2]],
+            [m01, m12, m20],
+        ] {
             collect_points(p, sub, 0.25 * area, params, depth + 1, out);
         }
     } else {

@@ -47,7 +47,9 @@ impl DenseLu {
             .par_col_chunks_mut(1)
             .all(|c| c.col_iter().all(|c| c.iter().all(|v| v.is_finite())));
         if !finite {
-            return Err(BemError::NonFinite { what: "system matrix" });
+            return Err(BemError::NonFinite {
+                what: "system matrix",
+            });
         }
         let par = Par::rayon(0);
         let mut perm = vec![0usize; n];
@@ -79,7 +81,8 @@ impl DenseLu {
             }
             max = max.max(p);
         }
-        if n > 0 && !(min > SINGULAR_PIVOT_RATIO * n as f64 * max) {
+        // written so that a NaN pivot also counts as singular
+        if n > 0 && (min.is_nan() || min <= SINGULAR_PIVOT_RATIO * n as f64 * max) {
             return Err(BemError::Singular {
                 index: min_index,
                 pivot: min,
@@ -118,10 +121,7 @@ impl DenseLu {
         let perm = PermRef::new_checked(&self.perm, &self.perm_inv, n);
         let lu = self.lu.as_ref();
         solve::solve_in_place(lu, lu, perm, rhs.rb_mut(), par, stack);
-        let finite = rhs
-            .rb()
-            .col_iter()
-            .all(|c| c.iter().all(|v| v.is_finite()));
+        let finite = rhs.rb().col_iter().all(|c| c.iter().all(|v| v.is_finite()));
         if !finite {
             return Err(BemError::NonFinite { what: "solution" });
         }

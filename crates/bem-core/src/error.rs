@@ -21,7 +21,9 @@ pub enum MeshError {
         z: f64,
     },
     /// A triangle refers to a vertex that does not exist.
-    #[error("triangle {triangle} refers to vertex {index}, but the mesh has only {vertex_count} vertices")]
+    #[error(
+        "triangle {triangle} refers to vertex {index}, but the mesh has only {vertex_count} vertices"
+    )]
     IndexOutOfRange {
         /// Index of the triangle.
         triangle: usize,
@@ -51,7 +53,9 @@ pub enum MeshError {
         triangle: usize,
     },
     /// An edge is shared by more than two triangles.
-    #[error("edge ({a}, {b}) is shared by {count} triangles (first: {triangle}): the surface is not edge-manifold")]
+    #[error(
+        "edge ({a}, {b}) is shared by {count} triangles (first: {triangle}): the surface is not edge-manifold"
+    )]
     NonManifoldEdge {
         /// First vertex of the edge.
         a: u32,
@@ -63,7 +67,9 @@ pub enum MeshError {
         triangle: usize,
     },
     /// Two triangles traverse a shared edge in the same direction.
-    #[error("triangles {first} and {second} both traverse edge ({a} -> {b}): orientation is inconsistent")]
+    #[error(
+        "triangles {first} and {second} both traverse edge ({a} -> {b}): orientation is inconsistent"
+    )]
     InconsistentOrientation {
         /// First vertex of the directed edge.
         a: u32,
@@ -118,10 +124,14 @@ pub enum BemError {
         element: usize,
     },
     /// No element has a prescribed displacement and the gauge was not fixed.
-    #[error("no element has a prescribed displacement: the pure-traction problem is singular (rigid-body modes); prescribe a displacement somewhere or set SolveParams::rigid_modes = RigidModes::Fix")]
+    #[error(
+        "no element has a prescribed displacement: the pure-traction problem is singular (rigid-body modes); prescribe a displacement somewhere or set SolveParams::rigid_modes = RigidModes::Fix"
+    )]
     PureTraction,
     /// The system matrix is numerically singular.
-    #[error("the system matrix is numerically singular: pivot {index} has magnitude {pivot:e} against largest pivot {max_pivot:e}")]
+    #[error(
+        "the system matrix is numerically singular: pivot {index} has magnitude {pivot:e} against largest pivot {max_pivot:e}"
+    )]
     Singular {
         /// Index of the smallest pivot.
         index: usize,

@@ -141,9 +141,21 @@ impl KernelConstants {
         let axz = a * (vx * n.z - vz * n.x);
         let ayz = a * (vy * n.z - vz * n.y);
         [
-            [s * (d + 3.0 * sxx), s * (3.0 * sxy - axy), s * (3.0 * sxz - axz)],
-            [s * (3.0 * sxy + axy), s * (d + 3.0 * syy), s * (3.0 * syz - ayz)],
-            [s * (3.0 * sxz + axz), s * (3.0 * syz + ayz), s * (d + 3.0 * szz)],
+            [
+                s * (d + 3.0 * sxx),
+                s * (3.0 * sxy - axy),
+                s * (3.0 * sxz - axz),
+            ],
+            [
+                s * (3.0 * sxy + axy),
+                s * (d + 3.0 * syy),
+                s * (3.0 * syz - ayz),
+            ],
+            [
+                s * (3.0 * sxz + axz),
+                s * (3.0 * syz + ayz),
+                s * (d + 3.0 * szz),
+            ],
         ]
     }
 

@@ -64,14 +64,12 @@ impl SurfaceMesh {
             let [a, b, c] = tri.map(|i| vertices[i as usize]);
             let cross = (b - a).cross(c - a);
             let area = 0.5 * cross.length();
-            let longest = (b - a)
-                .length()
-                .max((c - b).length())
-                .max((a - c).length());
+            let longest = (b - a).length().max((c - b).length()).max((a - c).length());
             if tri[0] == tri[1]
                 || tri[1] == tri[2]
                 || tri[0] == tri[2]
-                || !(area > DEGENERATE_RELATIVE_AREA * longest * longest)
+                || area.is_nan()
+                || area <= DEGENERATE_RELATIVE_AREA * longest * longest
             {
                 return Err(MeshError::DegenerateTriangle {
                     triangle: t,
@@ -92,7 +90,7 @@ impl SurfaceMesh {
                 a.dot(b.cross(c)) / 6.0
             })
             .sum();
-        if !(volume > 0.0) {
+        if volume.is_nan() || volume <= 0.0 {
             return Err(MeshError::NotOutward { volume });
         }
         Ok(Self {

@@ -45,8 +45,12 @@ impl Default for QuadratureParams {
 
 /// The 7 quadrature points of a triangle with weights multiplied by its area.
 pub(crate) fn seven_points(corners: [DVec3; 3], area: f64) -> [(DVec3, f64); 7] {
-    SEVEN_POINT_RULE
-        .map(|(l, w)| (corners[0] * l[0] + corners[1] * l[1] + corners[2] * l[2], w * area))
+    SEVEN_POINT_RULE.map(|(l, w)| {
+        (
+            corners[0] * l[0] + corners[1] * l[1] + corners[2] * l[2],
+            w * area,
+        )
+    })
 }
 
 fn longest_edge(c: &[DVec3; 3]) -> f64 {
@@ -82,7 +86,12 @@ fn accumulate_adaptive(
         let m12 = 0.5 * (c[1] + c[2]);
         let m20 = 0.5 * (c[2] + c[0]);
         let a4 = 0.25 * area;
-        for sub in [[c[0], m01, m20], [m01, c[1], m12], [m20, m12, c[2]], [m01, m12, m20]] {
+        for sub in [
+            [c[0], m01, m20],
+            [m01, c[1], m12],
+            [m20, m12, c[2]],
+            [m01, m12, m20],
+        ] {
             accumulate_adaptive(p, sub, a4, n, params, depth + 1, need_u, m);
         }
     } else {
@@ -122,7 +131,16 @@ impl ElementQuad {
     pub fn moments(&self, p: DVec3, params: &QuadratureParams, need_u: bool) -> Moments {
         let mut m = Moments::default();
         if params.max_depth > 0 && is_near(p, self.centroid, self.longest, params.near_factor) {
-            accumulate_adaptive(p, self.corners, self.area, self.normal, params, 0, need_u, &mut m);
+            accumulate_adaptive(
+                p,
+                self.corners,
+                self.area,
+                self.normal,
+                params,
+                0,
+                need_u,
+                &mut m,
+            );
         } else {
             for &(q, w) in &self.points {
                 m.add(p, q, w, self.normal, need_u);

@@ -99,7 +99,11 @@ impl ResponseBasis {
         self.combine(s, |r| &r.traction)
     }
 
-    fn combine(&self, s: &[f64], field: impl Fn(&Solution) -> &Vec<DVec3>) -> Result<Vec<DVec3>, BemError> {
+    fn combine(
+        &self,
+        s: &[f64],
+        field: impl Fn(&Solution) -> &Vec<DVec3>,
+    ) -> Result<Vec<DVec3>, BemError> {
         if s.len() != self.responses.len() {
             return Err(BemError::WrongLength {
                 what: "amplitudes (one per group)",

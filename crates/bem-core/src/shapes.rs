@@ -102,7 +102,11 @@ pub fn torus(major: f64, minor: f64, around: u32, tube: u32) -> Result<SurfaceMe
         for j in 0..tube {
             let theta = TAU * j as f64 / tube as f64;
             let rr = major + minor * theta.cos();
-            vertices.push(DVec3::new(rr * phi.cos(), rr * phi.sin(), minor * theta.sin()));
+            vertices.push(DVec3::new(
+                rr * phi.cos(),
+                rr * phi.sin(),
+                minor * theta.sin(),
+            ));
         }
     }
     let id = |i: u32, j: u32| (i % around) * tube + (j % tube);

@@ -30,7 +30,7 @@ fn log_sec_tan(theta: f64) -> f64 {
 pub fn g_singular(corners: [DVec3; 3], p: DVec3, material: &Material) -> Option<Block> {
     let normal = (corners[1] - corners[0]).cross(corners[2] - corners[0]);
     let twice_area = normal.length();
-    if !(twice_area > 0.0) {
+    if twice_area.is_nan() || twice_area <= 0.0 {
         return None;
     }
     let nrm = normal / twice_area;
@@ -76,7 +76,11 @@ pub fn g_singular(corners: [DVec3; 3], p: DVec3, material: &Material) -> Option<
     let mut out = [[0.0; 3]; 3];
     for (i, row) in out.iter_mut().enumerate() {
         for (j, v) in row.iter_mut().enumerate() {
-            let delta = if i == j { (3.0 - 4.0 * nu) * scalar } else { 0.0 };
+            let delta = if i == j {
+                (3.0 - 4.0 * nu) * scalar
+            } else {
+                0.0
+            };
             *v = k * (delta + tensor[i][j]);
         }
     }

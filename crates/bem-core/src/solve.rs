@@ -3,8 +3,8 @@
 use glam::DVec3;
 
 use crate::{
-    BemError, BoundaryCondition, Control, DenseLu, LinearSystem, Loads, Material,
-    QuadratureParams, RigidModes, Stage, SurfaceMesh,
+    BemError, BoundaryCondition, Control, DenseLu, LinearSystem, Loads, Material, QuadratureParams,
+    RigidModes, Stage, SurfaceMesh,
 };
 
 /// Parameters of a solve.

@@ -76,7 +76,14 @@ fn mixed_outer_error(inner: f64, outer: f64, subdivisions: u32, nu: f64) -> f64 
             }
         })
         .collect();
-    let s = solve(&mesh, &m, &bcs, &SolveParams::default(), &Control::default()).expect("solve");
+    let s = solve(
+        &mesh,
+        &m,
+        &bcs,
+        &SolveParams::default(),
+        &Control::default(),
+    )
+    .expect("solve");
     let err = mean_radial_error(&mesh, &s.displacement, exact, outer, half..n);
     eprintln!("mixed a={inner} b={outer} N={n} nu={nu}: outer mean radial error {err:.4e}");
     err
@@ -86,9 +93,18 @@ fn mixed_outer_error(inner: f64, outer: f64, subdivisions: u32, nu: f64) -> f64 
 fn hollow_sphere_mixed_nu_045_within_design_figures_and_converges() {
     let coarse = mixed_outer_error(1.0, 2.0, 2, 0.45);
     let fine = mixed_outer_error(1.0, 2.0, 3, 0.45);
-    assert!(coarse <= 1.2 * 0.008, "640 elements: {coarse:e} > 1.2 × 0.8%");
-    assert!(fine <= 1.2 * 0.0045, "2560 elements: {fine:e} > 1.2 × 0.45%");
-    assert!(fine < coarse, "error must decrease under refinement: {coarse:e} -> {fine:e}");
+    assert!(
+        coarse <= 1.2 * 0.008,
+        "640 elements: {coarse:e} > 1.2 × 0.8%"
+    );
+    assert!(
+        fine <= 1.2 * 0.0045,
+        "2560 elements: {fine:e} > 1.2 × 0.45%"
+    );
+    assert!(
+        fine < coarse,
+        "error must decrease under refinement: {coarse:e} -> {fine:e}"
+    );
 }
 
 #[test]
@@ -97,7 +113,10 @@ fn hollow_sphere_mixed_nu_049_below_one_percent_and_converges() {
     let fine = mixed_outer_error(1.0, 2.0, 3, 0.49);
     assert!(coarse <= 1.2 * 0.01, "640 elements: {coarse:e} > 1.2 × 1%");
     assert!(fine <= 1.2 * 0.01, "2560 elements: {fine:e} > 1.2 × 1%");
-    assert!(fine < coarse, "error must decrease under refinement: {coarse:e} -> {fine:e}");
+    assert!(
+        fine < coarse,
+        "error must decrease under refinement: {coarse:e} -> {fine:e}"
+    );
 }
 
 #[test]
@@ -108,7 +127,10 @@ fn hollow_sphere_mixed_nu_03_converges_at_rate_one() {
     let coarse = mixed_outer_error(1.0, 2.0, 2, 0.3);
     let fine = mixed_outer_error(1.0, 2.0, 3, 0.3);
     assert!(coarse <= 0.05, "640 elements: {coarse:e}");
-    assert!(fine <= 0.55 * coarse, "rate < 1 in h: {coarse:e} -> {fine:e}");
+    assert!(
+        fine <= 0.55 * coarse,
+        "rate < 1 in h: {coarse:e} -> {fine:e}"
+    );
 }
 
 #[test]
@@ -153,8 +175,14 @@ fn lame_errors(subdivisions: u32) -> (f64, f64) {
 fn lame_internal_pressure_with_rigid_modes_fixed() {
     let (ci, co) = lame_errors(2);
     let (fi, fo) = lame_errors(3);
-    assert!(ci <= 1.2 * 0.040 && co <= 1.2 * 0.0043, "640: inner {ci:e} outer {co:e}");
-    assert!(fi <= 1.2 * 0.019 && fo <= 1.2 * 0.0015, "2560: inner {fi:e} outer {fo:e}");
+    assert!(
+        ci <= 1.2 * 0.040 && co <= 1.2 * 0.0043,
+        "640: inner {ci:e} outer {co:e}"
+    );
+    assert!(
+        fi <= 1.2 * 0.019 && fo <= 1.2 * 0.0015,
+        "2560: inner {fi:e} outer {fo:e}"
+    );
     assert!(fi < ci && fo < co, "errors must decrease under refinement");
 }
 
@@ -163,7 +191,13 @@ fn pure_traction_is_rejected_without_gauge_fixing() {
     let mesh = shapes::hollow_sphere(1.0, 2.0, 1).expect("valid sphere");
     let m = Material::new(0.3, 1.0).expect("valid material");
     let bcs = vec![BoundaryCondition::FREE; mesh.element_count()];
-    let r = solve(&mesh, &m, &bcs, &SolveParams::default(), &Control::default());
+    let r = solve(
+        &mesh,
+        &m,
+        &bcs,
+        &SolveParams::default(),
+        &Control::default(),
+    );
     assert_eq!(r.unwrap_err(), bem_core::BemError::PureTraction);
 }
 
@@ -180,7 +214,14 @@ fn solid_sphere_traction_error(subdivisions: u32) -> f64 {
         .iter()
         .map(|x| BoundaryCondition::Displacement(DVec3::new(eps * x.x, 0.0, 0.0)))
         .collect();
-    let s = solve(&mesh, &m, &bcs, &SolveParams::default(), &Control::default()).expect("solve");
+    let s = solve(
+        &mesh,
+        &m,
+        &bcs,
+        &SolveParams::default(),
+        &Control::default(),
+    )
+    .expect("solve");
     let (lambda, mu) = (m.lambda(), m.shear_modulus());
     let n_el = mesh.element_count();
     let err = (0..n_el)
@@ -199,7 +240,10 @@ fn solid_sphere_traction_error(subdivisions: u32) -> f64 {
 fn solid_sphere_linear_field_tractions_match_sigma_n() {
     let coarse = solid_sphere_traction_error(2);
     let fine = solid_sphere_traction_error(3);
-    assert!(coarse <= 1.2 * 0.018, "320 elements: {coarse:e} > 1.2 × 1.8%");
+    assert!(
+        coarse <= 1.2 * 0.018,
+        "320 elements: {coarse:e} > 1.2 × 1.8%"
+    );
     assert!(fine <= 1.2 * 0.009, "1280 elements: {fine:e} > 1.2 × 0.9%");
     assert!(fine < coarse);
 }
@@ -210,7 +254,14 @@ fn rigid_translation_gives_zero_tractions() {
     let m = Material::new(0.3, 1.0).expect("valid material");
     let c = DVec3::new(0.3, -0.2, 0.5);
     let bcs = vec![BoundaryCondition::Displacement(c); mesh.element_count()];
-    let s = solve(&mesh, &m, &bcs, &SolveParams::default(), &Control::default()).expect("solve");
+    let s = solve(
+        &mesh,
+        &m,
+        &bcs,
+        &SolveParams::default(),
+        &Control::default(),
+    )
+    .expect("solve");
     // traction scale of a unit strain: μ |c| / (body size)
     let scale = m.shear_modulus() * c.length() / 2.0;
     let worst = s.traction.iter().map(|t| t.length()).fold(0.0, f64::max) / scale;

@@ -36,7 +36,10 @@ fn open_mesh_names_the_boundary_edge() {
     assert!(matches!(err, MeshError::OpenEdge { .. }), "{err}");
     if let MeshError::OpenEdge { a, b, .. } = err {
         // the removed face was (1, 2, 3): its edges are the open ones
-        assert!([(1, 2), (2, 3), (1, 3)].contains(&(a.min(b), a.max(b))), "{a} {b}");
+        assert!(
+            [(1, 2), (2, 3), (1, 3)].contains(&(a.min(b), a.max(b))),
+            "{a} {b}"
+        );
     }
 }
 
@@ -69,7 +72,10 @@ fn inward_mesh_is_rejected() {
     let (v, t) = tetra();
     let t = t.into_iter().map(|[a, b, c]| [a, c, b]).collect();
     let err = SurfaceMesh::new(v, t).unwrap_err();
-    assert!(matches!(err, MeshError::NotOutward { volume } if volume < 0.0), "{err}");
+    assert!(
+        matches!(err, MeshError::NotOutward { volume } if volume < 0.0),
+        "{err}"
+    );
 }
 
 #[test]
@@ -77,11 +83,17 @@ fn zero_area_triangle_is_degenerate() {
     let (mut v, t) = tetra();
     v[3] = DVec3::new(0.5, 0.5, 0.0); // on the hypotenuse of face (0, 2, 1)... makes face (1,2,3) flat
     let err = SurfaceMesh::new(v, t).unwrap_err();
-    assert!(matches!(err, MeshError::DegenerateTriangle { triangle: 3, .. }), "{err}");
+    assert!(
+        matches!(err, MeshError::DegenerateTriangle { triangle: 3, .. }),
+        "{err}"
+    );
     let (v, mut t) = tetra();
     t[0] = [0, 0, 1];
     let err = SurfaceMesh::new(v, t).unwrap_err();
-    assert!(matches!(err, MeshError::DegenerateTriangle { triangle: 0, .. }), "{err}");
+    assert!(
+        matches!(err, MeshError::DegenerateTriangle { triangle: 0, .. }),
+        "{err}"
+    );
 }
 
 #[test]
@@ -89,25 +101,56 @@ fn nan_coordinate_and_bad_index_are_reported() {
     let (mut v, t) = tetra();
     v[2].y = f64::NAN;
     let err = SurfaceMesh::new(v, t).unwrap_err();
-    assert!(matches!(err, MeshError::NonFiniteVertex { vertex: 2, .. }), "{err}");
+    assert!(
+        matches!(err, MeshError::NonFiniteVertex { vertex: 2, .. }),
+        "{err}"
+    );
     let (v, mut t) = tetra();
     t[1][2] = 9;
     let err = SurfaceMesh::new(v, t).unwrap_err();
     assert!(
-        matches!(err, MeshError::IndexOutOfRange { triangle: 1, index: 9, vertex_count: 4 }),
+        matches!(
+            err,
+            MeshError::IndexOutOfRange {
+                triangle: 1,
+                index: 9,
+                vertex_count: 4
+            }
+        ),
         "{err}"
     );
-    assert_eq!(SurfaceMesh::new(vec![], vec![]).unwrap_err(), MeshError::Empty);
+    assert_eq!(
+        SurfaceMesh::new(vec![], vec![]).unwrap_err(),
+        MeshError::Empty
+    );
 }
 
 #[test]
 fn material_is_validated() {
-    assert_eq!(Material::new(0.5, 1.0).unwrap_err(), BemError::InvalidPoisson(0.5));
-    assert!(matches!(Material::new(0.7, 1.0), Err(BemError::InvalidPoisson(_))));
-    assert!(matches!(Material::new(-0.1, 1.0), Err(BemError::InvalidPoisson(_))));
-    assert!(matches!(Material::new(f64::NAN, 1.0), Err(BemError::InvalidPoisson(_))));
-    assert!(matches!(Material::new(0.3, 0.0), Err(BemError::InvalidShearModulus(_))));
-    assert!(matches!(Material::new(0.3, f64::INFINITY), Err(BemError::InvalidShearModulus(_))));
+    assert_eq!(
+        Material::new(0.5, 1.0).unwrap_err(),
+        BemError::InvalidPoisson(0.5)
+    );
+    assert!(matches!(
+        Material::new(0.7, 1.0),
+        Err(BemError::InvalidPoisson(_))
+    ));
+    assert!(matches!(
+        Material::new(-0.1, 1.0),
+        Err(BemError::InvalidPoisson(_))
+    ));
+    assert!(matches!(
+        Material::new(f64::NAN, 1.0),
+        Err(BemError::InvalidPoisson(_))
+    ));
+    assert!(matches!(
+        Material::new(0.3, 0.0),
+        Err(BemError::InvalidShearModulus(_))
+    ));
+    assert!(matches!(
+        Material::new(0.3, f64::INFINITY),
+        Err(BemError::InvalidShearModulus(_))
+    ));
     assert!(Material::new(0.0, 1.0).is_ok() && Material::new(0.499, 1.0).is_ok());
 }
 
@@ -116,7 +159,14 @@ fn wrong_number_of_conditions_and_bad_values_are_reported() {
     let mesh = shapes::sphere(1, 1.0).expect("valid");
     let m = Material::new(0.3, 1.0).expect("material");
     let bcs = vec![BoundaryCondition::Displacement(DVec3::X); 79];
-    let err = solve(&mesh, &m, &bcs, &SolveParams::default(), &Control::default()).unwrap_err();
+    let err = solve(
+        &mesh,
+        &m,
+        &bcs,
+        &SolveParams::default(),
+        &Control::default(),
+    )
+    .unwrap_err();
     assert_eq!(
         err,
         BemError::WrongLength {
@@ -127,7 +177,14 @@ fn wrong_number_of_conditions_and_bad_values_are_reported() {
     );
     let mut bcs = vec![BoundaryCondition::Displacement(DVec3::X); 80];
     bcs[7] = BoundaryCondition::Traction(DVec3::new(0.0, f64::NAN, 0.0));
-    let err = solve(&mesh, &m, &bcs, &SolveParams::default(), &Control::default()).unwrap_err();
+    let err = solve(
+        &mesh,
+        &m,
+        &bcs,
+        &SolveParams::default(),
+        &Control::default(),
+    )
+    .unwrap_err();
     assert_eq!(err, BemError::NonFiniteValue { element: 7 });
 }
 
@@ -140,10 +197,47 @@ fn response_groups_must_name_prescribed_elements() {
     let c = Control::default();
     let err = ResponseBasis::compute(&mesh, &m, &prescribed, &[vec![(50, DVec3::X)]], &p, &c)
         .unwrap_err();
-    assert!(matches!(err, BemError::BadGroupElement { group: 0, element: 50, .. }), "{err}");
-    let err = ResponseBasis::compute(&mesh, &m, &prescribed, &[vec![], vec![(80, DVec3::X)]], &p, &c)
-        .unwrap_err();
-    assert!(matches!(err, BemError::BadGroupElement { group: 1, element: 80, .. }), "{err}");
+    assert!(
+        matches!(
+            err,
+            BemError::BadGroupElement {
+                group: 0,
+                element: 50,
+                ..
+            }
+        ),
+        "{err}"
+    );
+    let err = ResponseBasis::compute(
+        &mesh,
+        &m,
+        &prescribed,
+        &[vec![], vec![(80, DVec3::X)]],
+        &p,
+        &c,
+    )
+    .unwrap_err();
+    assert!(
+        matches!(
+            err,
+            BemError::BadGroupElement {
+                group: 1,
+                element: 80,
+                ..
+            }
+        ),
+        "{err}"
+    );
     let err = ResponseBasis::compute(&mesh, &m, &prescribed[..10], &[], &p, &c).unwrap_err();
-    assert!(matches!(err, BemError::WrongLength { expected: 80, got: 10, .. }), "{err}");
+    assert!(
+        matches!(
+            err,
+            BemError::WrongLength {
+                expected: 80,
+                got: 10,
+                ..
+            }
+        ),
+        "{err}"
+    );
 }

@@ -41,9 +41,9 @@ fn g_brute_force(corners: [DVec3; 3], p: DVec3, m: &Material) -> Block {
     let panels = 64;
     let gl_v: Vec<(f64, f64)> = (0..panels)
         .flat_map(|k| {
-            gauss_legendre_01(20).into_iter().map(move |(x, w)| {
-                ((k as f64 + x) / panels as f64, w / panels as f64)
-            })
+            gauss_legendre_01(20)
+                .into_iter()
+                .map(move |(x, w)| ((k as f64 + x) / panels as f64, w / panels as f64))
         })
         .collect();
     let mut out = [[0.0; 3]; 3];
@@ -96,7 +96,10 @@ fn analytic_g_matches_brute_force_on_scalene_and_obtuse_triangles() {
         ("scalene", tilted([[0.0, 0.0], [1.3, 0.0], [0.4, 0.9]])),
         ("obtuse", tilted([[0.0, 0.0], [2.0, 0.0], [1.7, 0.35]])),
         ("very obtuse", tilted([[0.0, 0.0], [1.0, 0.0], [-0.6, 0.2]])),
-        ("small scalene", tilted([[0.0, 0.0], [0.013, 0.002], [0.004, 0.011]])),
+        (
+            "small scalene",
+            tilted([[0.0, 0.0], [0.013, 0.002], [0.004, 0.011]]),
+        ),
     ];
     for (name, c) in cases {
         let centroid = (c[0] + c[1] + c[2]) / 3.0;
@@ -109,7 +112,10 @@ fn analytic_g_matches_brute_force_on_scalene_and_obtuse_triangles() {
             assert!(rel < 1e-10, "{name}: {rel:e}");
             // the off-diagonal (b-) terms are present and matched too
             let off = analytic[0][1].abs() + analytic[0][2].abs() + analytic[1][2].abs();
-            assert!(off > 1e-3 * frobenius(&analytic), "{name}: off-diagonal terms vanish");
+            assert!(
+                off > 1e-3 * frobenius(&analytic),
+                "{name}: off-diagonal terms vanish"
+            );
         }
     }
 }
@@ -162,7 +168,9 @@ fn check_neighbours(mesh: &SurfaceMesh, m: &Material, shared: usize, i: usize) -
             rel_diff(&g7, &g_ref)
         );
         assert!(eh < 1e-4 && eg < 1e-4, "pair ({i},{j}): H {eh:e} G {eg:e}");
-        worst_plain = worst_plain.max(rel_diff(&h7, &h_ref)).max(rel_diff(&g7, &g_ref));
+        worst_plain = worst_plain
+            .max(rel_diff(&h7, &h_ref))
+            .max(rel_diff(&g7, &g_ref));
     }
     assert!(count > 0, "no pair sharing {shared} vertices");
     worst_plain
@@ -182,8 +190,14 @@ fn adaptive_blocks_of_edge_and_vertex_neighbours_match_fine_reference() {
         let plain_edge = check_neighbours(&mesh, &m, 2, i);
         let plain_vertex = check_neighbours(&mesh, &m, 1, i);
         // the test can fail: without subdivision the same blocks are far off
-        assert!(plain_edge > 1e-2, "7-point edge-neighbour error only {plain_edge:e}");
-        assert!(plain_vertex > 1e-4, "7-point vertex-neighbour error only {plain_vertex:e}");
+        assert!(
+            plain_edge > 1e-2,
+            "7-point edge-neighbour error only {plain_edge:e}"
+        );
+        assert!(
+            plain_vertex > 1e-4,
+            "7-point vertex-neighbour error only {plain_vertex:e}"
+        );
     }
 }
 

@@ -11,7 +11,11 @@ use glam::DVec3;
 
 fn max_rel(a: &[DVec3], b: &[DVec3]) -> f64 {
     let scale = b.iter().map(|v| v.length()).fold(0.0, f64::max);
-    a.iter().zip(b).map(|(x, y)| (*x - *y).length()).fold(0.0, f64::max) / scale
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (*x - *y).length())
+        .fold(0.0, f64::max)
+        / scale
 }
 
 #[test]
@@ -56,11 +60,20 @@ fn response_superposition_equals_direct_solve() {
             bcs[e] = BoundaryCondition::Displacement(old + s[g] * u);
         }
     }
-    let direct =
-        solve(&mesh, &m, &bcs, &SolveParams::default(), &Control::default()).expect("solve");
+    let direct = solve(
+        &mesh,
+        &m,
+        &bcs,
+        &SolveParams::default(),
+        &Control::default(),
+    )
+    .expect("solve");
     let u = basis.combine_displacement(&s).expect("combine");
     let t = basis.combine_traction(&s).expect("combine");
-    let (eu, et) = (max_rel(&u, &direct.displacement), max_rel(&t, &direct.traction));
+    let (eu, et) = (
+        max_rel(&u, &direct.displacement),
+        max_rel(&t, &direct.traction),
+    );
     eprintln!("superposition: displacement {eu:e}, traction {et:e}");
     assert!(eu < 1e-10 && et < 1e-10, "u {eu:e} t {et:e}");
     // the free surface really moved and the driven elements kept their prescribed values
@@ -86,7 +99,14 @@ fn full_h_and_g_reproduce_the_mixed_system_solution() {
             }
         })
         .collect();
-    let s = solve(&mesh, &m, &bcs, &SolveParams::default(), &Control::default()).expect("solve");
+    let s = solve(
+        &mesh,
+        &m,
+        &bcs,
+        &SolveParams::default(),
+        &Control::default(),
+    )
+    .expect("solve");
     let (h, g) =
         assemble_h_g(&mesh, &m, &SolveParams::default().quadrature).expect("full matrices");
     let n = mesh.element_count();
@@ -112,7 +132,11 @@ fn progress_is_reported_per_stage_and_cancellation_stops_assembly() {
     solve(&mesh, &m, &bcs, &SolveParams::default(), &control).expect("solve");
     let seen = seen.into_inner().expect("lock");
     for stage in [Stage::Assembly, Stage::Factorisation, Stage::Solve] {
-        let last = seen.iter().rev().find(|p| p.stage == stage).expect("stage reported");
+        let last = seen
+            .iter()
+            .rev()
+            .find(|p| p.stage == stage)
+            .expect("stage reported");
         assert_eq!(last.done, last.total, "{stage:?} did not finish");
     }
     let assembly: Vec<_> = seen.iter().filter(|p| p.stage == Stage::Assembly).collect();
@@ -138,7 +162,10 @@ fn progress_is_reported_per_stage_and_cancellation_stops_assembly() {
     let err = solve(&mesh, &m, &bcs, &SolveParams::default(), &control).unwrap_err();
     assert_eq!(err, BemError::Cancelled);
     let done = *max_done.lock().expect("lock");
-    assert!(done < 320, "assembly ran to the end ({done}) despite cancellation");
+    assert!(
+        done < 320,
+        "assembly ran to the end ({done}) despite cancellation"
+    );
 
     // already cancelled: nothing starts
     let cancel = AtomicBool::new(true);
@@ -155,14 +182,18 @@ fn progress_is_reported_per_stage_and_cancellation_stops_assembly() {
 #[test]
 fn singular_and_non_finite_matrices_are_reported_not_returned_as_nan() {
     // rank 2 matrix
-    let a = faer::Mat::<f64>::from_fn(3, 3, |i, j| ((i + 1) * (j + 1)) as f64 + if j == 0 { i as f64 } else { 0.0 });
+    let a = faer::Mat::<f64>::from_fn(3, 3, |i, j| {
+        ((i + 1) * (j + 1)) as f64 + if j == 0 { i as f64 } else { 0.0 }
+    });
     let err = DenseLu::factor(a).unwrap_err();
     assert!(matches!(err, BemError::Singular { .. }), "{err}");
     let mut b = faer::Mat::<f64>::identity(4, 4);
     b[(2, 1)] = f64::NAN;
     assert_eq!(
         DenseLu::factor(b).unwrap_err(),
-        BemError::NonFinite { what: "system matrix" }
+        BemError::NonFinite {
+            what: "system matrix"
+        }
     );
     // a real BEM K with one column duplicated (two identical unknowns) is singular
     let mesh = shapes::sphere(1, 1.0).expect("valid");
@@ -193,12 +224,14 @@ fn multiple_right_hand_sides_match_separate_solves() {
     let n = mesh.element_count();
     let prescribed: Vec<bool> = (0..n).map(|e| e < n / 2).collect();
     let mut loads = Loads::new(n, 2);
-    for e in 0..n {
+    for (e, &p) in prescribed.iter().enumerate() {
         let x = mesh.centroid(e);
-        if prescribed[e] {
+        if p {
             loads.set(e, 0, 0.01 * x).expect("set");
         } else {
-            loads.set(e, 1, DVec3::new(0.0, 0.0, 0.01 * x.z)).expect("set");
+            loads
+                .set(e, 1, DVec3::new(0.0, 0.0, 0.01 * x.z))
+                .expect("set");
         }
     }
     let p = SolveParams::default();
@@ -232,7 +265,9 @@ fn element_to_vertex_is_area_weighted() {
         p.x *= 2.0;
     }
     let mesh = bem_core::SurfaceMesh::new(v, t).expect("valid");
-    let values: Vec<DVec3> = (0..mesh.element_count()).map(|e| DVec3::splat(e as f64)).collect();
+    let values: Vec<DVec3> = (0..mesh.element_count())
+        .map(|e| DVec3::splat(e as f64))
+        .collect();
     let out = element_to_vertex(&mesh, &values).expect("lengths match");
     let vertex = mesh.triangles()[10][1] as usize;
     let (mut s, mut w) = (0.0, 0.0);
