@@ -172,3 +172,23 @@ pub fn off_diagonal_blocks(
     let m = q.moments(mesh.centroid(i), params, true);
     Some((k.t_block(&m, q.normal), k.u_block(&m)))
 }
+
+/// `(∫ T, ∫ U)` over element `j` for an arbitrary load point `p` off the element, with the
+/// adaptive rule (the building block of every off-diagonal block).
+///
+/// Returns `None` when `j` is out of range or `p` is not finite.
+pub fn element_integrals(
+    mesh: &SurfaceMesh,
+    material: &Material,
+    j: usize,
+    p: DVec3,
+    params: &QuadratureParams,
+) -> Option<(Block, Block)> {
+    if j >= mesh.element_count() || !p.is_finite() {
+        return None;
+    }
+    let k = KernelConstants::new(material);
+    let q = ElementQuad::new(mesh, j);
+    let m = q.moments(p, params, true);
+    Some((k.t_block(&m, q.normal), k.u_block(&m)))
+}

@@ -250,3 +250,42 @@ fn kernel_blocks_agree_with_pointwise_kernels_far_away() {
     assert!((p - mesh.centroid(j)).length() > 2.0 * mesh.longest_edge(j));
     assert!(rel_diff(&h, &h2) < 1e-13 && rel_diff(&g, &g2) < 1e-13);
 }
+
+#[test]
+fn traction_kernel_integrates_to_minus_identity_inside_and_zero_outside() {
+    // c(P) + ∫_S T dS = 0 with c = I inside and 0 outside, exactly for any closed polyhedron:
+    // an independent check of the sign and every term of T (including the antisymmetric one).
+    use bem_core::quadrature::element_integrals;
+    let m = Material::new(0.3, 1.0).expect("material");
+    let (v, t) = shapes::icosphere(3, 1.0);
+    let v = v
+        .into_iter()
+        .map(|p| DVec3::new(1.3 * p.x, p.y, 0.8 * p.z))
+        .collect();
+    let mesh = SurfaceMesh::new(v, t).expect("valid mesh");
+    for (p, c) in [
+        (DVec3::new(0.2, -0.1, 0.15), 1.0),
+        (DVec3::new(0.9, 0.3, -0.2), 1.0),
+        (DVec3::new(1.6, 0.4, 0.3), 0.0),
+    ] {
+        let mut sum = [[0.0; 3]; 3];
+        for j in 0..mesh.element_count() {
+            let (h, _) =
+                element_integrals(&mesh, &m, j, p, &QuadratureParams::default()).expect("in range");
+            for a in 0..3 {
+                for b in 0..3 {
+                    sum[a][b] += h[a][b];
+                }
+            }
+        }
+        let mut worst = 0.0f64;
+        for a in 0..3 {
+            for b in 0..3 {
+                let expected = if a == b { -c } else { 0.0 };
+                worst = worst.max((sum[a][b] - expected).abs());
+            }
+        }
+        eprintln!("P = {p}: max |∫T + c I| = {worst:e}");
+        assert!(worst < 1e-6, "P = {p}: {worst:e}");
+    }
+}
