@@ -38,6 +38,29 @@ fn main() -> anyhow::Result<()> {
             root.join("ict_narrow_face_4loop.obj"),
         ];
     }
+    // Baseline: the same window with no face (egui + lavapipe + read-back, no 3D pass).
+    let mut empty = Harness::builder()
+        .with_size([1280.0, 800.0])
+        .wgpu()
+        .build_eframe(|cc| {
+            ViewerApp::new(
+                cc,
+                ViewerOptions {
+                    start_empty: true,
+                    ..Default::default()
+                },
+            )
+        });
+    empty.run();
+    let _ = empty.render();
+    let frames = 60;
+    let t = Instant::now();
+    for _ in 0..frames {
+        empty.step();
+        empty.render().map_err(anyhow::Error::msg)?;
+    }
+    let empty_ms = t.elapsed().as_secs_f64() * 1e3 / frames as f64;
+    println!("no face (baseline): full frame 1280x800 {empty_ms:.1} ms");
     for file in files {
         let basis = synthetic(viewer::source::load_neutral(&file)?);
         let n = basis.muscle_count();
@@ -69,7 +92,6 @@ fn main() -> anyhow::Result<()> {
         harness.state_mut().set_face("face", basis.clone());
         harness.run();
         let _ = harness.render();
-        let frames = 60;
         let t = Instant::now();
         for i in 0..frames {
             // Drive the pose through the app as a slider would.

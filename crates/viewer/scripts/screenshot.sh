@@ -8,11 +8,13 @@ shift
 root=$(cd "$(dirname "$0")/../../.." && pwd)
 bin="$root/target/release/viewer"
 [ -x "$bin" ] || (cd "$root" && cargo build --release -p viewer)
-display=":$((100 + $$ % 400))"
 work=$(mktemp -d)
-Xvfb "$display" -screen 0 1280x800x24 -nolisten tcp >/dev/null 2>&1 &
+# Xvfb picks a free display and writes its number to fd 3.
+Xvfb -displayfd 3 -screen 0 1280x800x24 -nolisten tcp 3>"$work/display" >/dev/null 2>&1 &
 xvfb_pid=$!
 trap 'kill "$xvfb_pid" 2>/dev/null || true; rm -rf "$work"' EXIT
+for _ in $(seq 100); do [ -s "$work/display" ] && break; sleep 0.1; done
+display=":$(head -n1 "$work/display")"
 for _ in $(seq 100); do [ -S "/tmp/.X11-unix/X${display#:}" ] && break; sleep 0.1; done
 mkdir -m 700 "$work/runtime"
 DISPLAY=$display XDG_RUNTIME_DIR=$work/runtime WGPU_BACKEND=${WGPU_BACKEND:-vulkan} \

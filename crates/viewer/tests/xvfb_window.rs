@@ -37,15 +37,28 @@ fn real_window_under_xvfb_shows_the_face_and_closes_cleanly() {
         return;
     }
     let dir = tempfile::tempdir().unwrap();
-    let display_number = 90 + std::process::id() % 400;
-    let display = format!(":{display_number}");
-    let xvfb = Command::new("Xvfb")
-        .args([&display, "-screen", "0", "1280x800x24", "-nolisten", "tcp"])
-        .stdout(Stdio::null())
+    // Xvfb picks a free display itself and writes its number to the pipe (-displayfd).
+    let mut xvfb = Command::new("Xvfb")
+        .args([
+            "-displayfd",
+            "1",
+            "-screen",
+            "0",
+            "1280x800x24",
+            "-nolisten",
+            "tcp",
+        ])
+        .stdout(Stdio::piped())
         .stderr(Stdio::null())
         .spawn()
         .expect("Xvfb not found: apt-get install xvfb xauth imagemagick (or FACEBEM_SKIP_XVFB=1)");
+    let stdout = xvfb.stdout.take().expect("piped stdout");
     let _xvfb = KillOnDrop(xvfb);
+    let mut line = String::new();
+    std::io::BufRead::read_line(&mut std::io::BufReader::new(stdout), &mut line)
+        .expect("read the display number from Xvfb");
+    let display_number: u32 = line.trim().parse().expect("Xvfb printed a display number");
+    let display = format!(":{display_number}");
     let socket = format!("/tmp/.X11-unix/X{display_number}");
     wait_for("the Xvfb socket", Duration::from_secs(30), || {
         Path::new(&socket).exists()
