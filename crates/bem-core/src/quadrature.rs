@@ -109,20 +109,30 @@ pub(crate) struct ElementQuad {
     pub normal: DVec3,
     pub area: f64,
     pub longest: f64,
-    pub points: [(DVec3, f64); 7],
+    /// The 7 points in lanes of 8 (the 8th repeats a point with weight 0) so the far-field loop
+    /// vectorises.
+    px: [f64; 8],
+    py: [f64; 8],
+    pz: [f64; 8],
+    pw: [f64; 8],
 }
 
 impl ElementQuad {
     pub fn new(mesh: &SurfaceMesh, e: usize) -> Self {
         let corners = mesh.corners(e);
         let area = mesh.area(e);
+        let points = seven_points(corners, area);
+        let lane = |k: usize| if k < 7 { points[k] } else { (points[0].0, 0.0) };
         Self {
             corners,
             centroid: mesh.centroid(e),
             normal: mesh.normal(e),
             area,
             longest: mesh.longest_edge(e),
-            points: seven_points(corners, area),
+            px: std::array::from_fn(|k| lane(k).0.x),
+            py: std::array::from_fn(|k| lane(k).0.y),
+            pz: std::array::from_fn(|k| lane(k).0.z),
+            pw: std::array::from_fn(|k| lane(k).1),
         }
     }
 
@@ -141,10 +151,67 @@ impl ElementQuad {
                 need_u,
                 &mut m,
             );
+        } else if need_u {
+            m = self.far_moments::<true>(p);
         } else {
-            for &(q, w) in &self.points {
-                m.add(p, q, w, self.normal, need_u);
+            m = self.far_moments::<false>(p);
+        }
+        m
+    }
+
+    /// Plain 7-point rule, written lane-wise (structure of arrays) for auto-vectorisation.
+    #[inline(always)]
+    #[allow(clippy::needless_range_loop)] // lane-indexed loop over several arrays: that is the point
+    fn far_moments<const NEED_U: bool>(&self, p: DVec3) -> Moments {
+        let n = self.normal;
+        let mut lanes = [[0.0f64; 8]; 17];
+        for k in 0..8 {
+            let rx = self.px[k] - p.x;
+            let ry = self.py[k] - p.y;
+            let rz = self.pz[k] - p.z;
+            let inv_r = 1.0 / (rx * rx + ry * ry + rz * rz).sqrt();
+            let (x, y, z) = (rx * inv_r, ry * inv_r, rz * inv_r);
+            let w = self.pw[k];
+            let w_r2 = w * inv_r * inv_r;
+            let wt = w_r2 * (x * n.x + y * n.y + z * n.z);
+            lanes[0][k] = wt;
+            lanes[1][k] = wt * x * x;
+            lanes[2][k] = wt * y * y;
+            lanes[3][k] = wt * z * z;
+            lanes[4][k] = wt * x * y;
+            lanes[5][k] = wt * x * z;
+            lanes[6][k] = wt * y * z;
+            lanes[7][k] = w_r2 * x;
+            lanes[8][k] = w_r2 * y;
+            lanes[9][k] = w_r2 * z;
+            if NEED_U {
+                let wu = w * inv_r;
+                lanes[10][k] = wu;
+                lanes[11][k] = wu * x * x;
+                lanes[12][k] = wu * y * y;
+                lanes[13][k] = wu * z * z;
+                lanes[14][k] = wu * x * y;
+                lanes[15][k] = wu * x * z;
+                lanes[16][k] = wu * y * z;
             }
+        }
+        let sum = |l: &[f64; 8]| ((l[0] + l[1]) + (l[2] + l[3])) + ((l[4] + l[5]) + (l[6] + l[7]));
+        let mut m = Moments {
+            t0: sum(&lanes[0]),
+            t2: std::array::from_fn(|i| sum(&lanes[1 + i])),
+            t1: std::array::from_fn(|i| sum(&lanes[7 + i])),
+            ..Moments::default()
+        };
+        if NEED_U {
+            m.u0 = sum(&lanes[10]);
+            m.u2 = [
+                sum(&lanes[11]),
+                sum(&lanes[12]),
+                sum(&lanes[13]),
+                sum(&lanes[14]),
+                sum(&lanes[15]),
+                sum(&lanes[16]),
+            ];
         }
         m
     }
