@@ -1,5 +1,7 @@
 //! Singular and near-singular integration accuracy.
 
+#![allow(clippy::needless_range_loop)] // 3×3 block loops read better with indices
+
 use bem_core::kernels::{Block, kelvin_t, kelvin_u};
 use bem_core::quadrature::off_diagonal_blocks;
 use bem_core::singular::g_singular;
