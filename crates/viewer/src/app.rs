@@ -439,9 +439,20 @@ impl ViewerApp {
         if let Some(face) = &self.face {
             if let (Some(model), Some(geo)) = (&face.model, &face.rig_geometry) {
                 let edited = self.edited_boxes().and_then(Result::ok);
+                // The front shell vertices are the face's vertices in the same order, so
+                // unless the rig is on a simplified copy, overlays follow the pose.
+                let posed = self.posed.positions_f64();
+                let n = model.rig.face_vertex_count;
+                let posed_geo =
+                    (model.simplified.is_none() && posed.len() == n && n <= geo.vertices.len())
+                        .then(|| {
+                            let mut g = (**geo).clone();
+                            g.vertices[..n].copy_from_slice(posed);
+                            g
+                        });
                 lines = overlay_lines(
                     &model.rig,
-                    geo,
+                    posed_geo.as_ref().unwrap_or(geo),
                     &self.overlays,
                     selected_element,
                     edited.as_ref(),
@@ -474,6 +485,9 @@ impl ViewerApp {
         if let Err(e) = self.posed.update(&face.basis, &self.sliders) {
             let text = format!("Cannot pose {}: {e}", face.name);
             self.error(text);
+        }
+        if self.face.as_ref().is_some_and(|f| f.model.is_some()) {
+            self.refresh_overlays();
         }
     }
 

@@ -168,10 +168,53 @@ fn first_run_computes_and_caches_the_default_rig_and_the_second_run_loads_it() {
     assert_eq!(first.state().basis(), Some(&model.basis));
     let cached: Vec<_> = std::fs::read_dir(cache.path()).unwrap().collect();
     assert_eq!(cached.len(), 1, "one cache file");
-    // Every slider is there and moves the face as the basis says.
+    // Every slider is there.
     for kind in face_prep::MuscleKind::ALL {
         first.get_by_role_and_label(Role::Slider, kind.display_name());
     }
+    // The muscle overlay follows the pose: with one slider moved, the chain is drawn through
+    // the posed element centroids.
+    let before = first.state().overlay_line_vertices().to_vec();
+    first
+        .get_by_role_and_label(Role::Slider, "Zygomaticus major L")
+        .set_value_accesskit(-1.0);
+    first.run();
+    let after = first.state().overlay_line_vertices().to_vec();
+    assert_eq!(before.len(), after.len());
+    // (The BEM response is global: every vertex moves a little, the driven chain the most.)
+    let largest = before
+        .iter()
+        .zip(&after)
+        .map(|(a, b)| glam::Vec3::from(a.position).distance(glam::Vec3::from(b.position)))
+        .fold(0.0f32, f32::max);
+    assert!(
+        f64::from(largest) > 0.01 * model.rig.face_size,
+        "overlay moved by {largest} only"
+    );
+    let posed = model.pose(first.state().sliders()).unwrap();
+    let zyg = model
+        .rig
+        .muscles
+        .iter()
+        .find(|m| m.kind == Some(face_prep::MuscleKind::ZygomaticusMajorL))
+        .unwrap();
+    let e = zyg.front_chain[0] as usize;
+    let centroid = model.rig.shell.triangles[e]
+        .iter()
+        .map(|&v| posed[v as usize])
+        .sum::<glam::DVec3>()
+        / 3.0;
+    let want = centroid.as_vec3().to_array();
+    assert!(
+        after.iter().any(|l| l
+            .position
+            .iter()
+            .zip(want)
+            .all(|(a, b)| (a - b).abs() < 1e-4)),
+        "no overlay vertex at the posed centroid {want:?} of the chain's first element"
+    );
+    first.get_by_label("Reset muscles").click();
+    first.run();
 
     let mut second = start(options);
     common::wait_idle(&mut second);
