@@ -3,7 +3,10 @@
 use crate::BemError;
 
 /// Isotropic linear elastic material: Poisson ratio ν ∈ [0, 0.5) and shear modulus μ > 0.
+///
+/// Deserialisation validates too (an invalid ν or μ in a file is an error, not a bad material).
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(try_from = "RawMaterial")]
 pub struct Material {
     poisson: f64,
     shear_modulus: f64,
@@ -48,5 +51,20 @@ impl Material {
     /// Lamé's first parameter λ = 2μν / (1 − 2ν).
     pub fn lambda(&self) -> f64 {
         2.0 * self.shear_modulus * self.poisson / (1.0 - 2.0 * self.poisson)
+    }
+}
+
+/// Unvalidated serialised form of [`Material`].
+#[derive(serde::Deserialize)]
+struct RawMaterial {
+    poisson: f64,
+    shear_modulus: f64,
+}
+
+impl TryFrom<RawMaterial> for Material {
+    type Error = BemError;
+
+    fn try_from(raw: RawMaterial) -> Result<Self, BemError> {
+        Self::new(raw.poisson, raw.shear_modulus)
     }
 }

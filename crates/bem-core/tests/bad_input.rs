@@ -241,3 +241,13 @@ fn response_groups_must_name_prescribed_elements() {
         "{err}"
     );
 }
+
+#[test]
+fn material_from_a_file_is_validated() {
+    let ok: Material =
+        serde_json::from_str(r#"{"poisson":0.45,"shear_modulus":2.0}"#).expect("valid json");
+    assert_eq!(ok, Material::new(0.45, 2.0).expect("valid"));
+    let err = serde_json::from_str::<Material>(r#"{"poisson":0.5,"shear_modulus":2.0}"#)
+        .expect_err("ν = 0.5 must be rejected");
+    assert!(err.to_string().contains("Poisson ratio 0.5"), "{err}");
+}
