@@ -174,8 +174,8 @@ impl LinearSystem {
         matrix.par_col_chunks_mut(3).enumerate().try_for_each(
             |(j, block)| -> Result<(), BemError> {
                 control.check()?;
-                let cols = three_columns(block).ok_or(BemError::NonFinite {
-                    what: "column layout of K (not contiguous)",
+                let cols = three_columns(block).ok_or(BemError::Internal {
+                    what: "a column block of K is not 3 contiguous columns",
                 })?;
                 if j >= n {
                     // gauge columns: R (rigid modes) in the displacement rows
@@ -333,8 +333,8 @@ fn assemble_column(
     }
     // singular diagonal G block (analytic)
     if need_u {
-        let g = g_diagonal(mesh, j, material).ok_or(BemError::NonFinite {
-            what: "analytic diagonal G block (centroid not inside its element)",
+        let g = g_diagonal(mesh, j, material).ok_or(BemError::Internal {
+            what: "analytic diagonal G block: centroid not inside its (validated) element",
         })?;
         let row = 3 * j;
         if is_prescribed {
@@ -382,8 +382,8 @@ pub fn assemble_h_g(
         let mut diag = [[0.0; 3]; 3];
         for j in 0..n {
             let (hb, gb) = if i == j {
-                let gb = g_diagonal(mesh, j, material).ok_or(BemError::NonFinite {
-                    what: "analytic diagonal G block",
+                let gb = g_diagonal(mesh, j, material).ok_or(BemError::Internal {
+                    what: "analytic diagonal G block: centroid not inside its (validated) element",
                 })?;
                 ([[0.0; 3]; 3], gb)
             } else {

@@ -156,6 +156,12 @@ pub enum BemError {
         /// Bytes requested.
         bytes: usize,
     },
+    /// An internal invariant failed (a bug in bem-core, please report it).
+    #[error("internal error: {what}")]
+    Internal {
+        /// Which invariant.
+        what: &'static str,
+    },
     /// The computation was cancelled through [`crate::Control::cancel`].
     #[error("cancelled")]
     Cancelled,

@@ -104,8 +104,7 @@ pub fn solve(
         loads.set(e, 0, bc.value())?;
     }
     let system = LinearSystem::assemble(mesh, material, &prescribed, &loads, params, control)?;
-    system
-        .solve(control)?
-        .pop()
-        .ok_or(BemError::NonFinite { what: "solution" })
+    system.solve(control)?.pop().ok_or(BemError::Internal {
+        what: "one load case solved but no solution returned",
+    })
 }
