@@ -598,3 +598,32 @@ fn edited_feature_boxes_re_place_the_muscles_and_invalid_boxes_are_refused() {
         msg.text
     );
 }
+
+/// Regression: a cache file left by an older build (same name, payload no longer decodes) made
+/// `cache::load` fail; the viewer must recompute and overwrite it, not report an error.
+#[test]
+fn a_stale_or_corrupt_cache_file_is_recomputed_and_replaced() {
+    let cache = tempfile::tempdir().unwrap();
+    let mesh = facebem::open::default_face().unwrap();
+    let path =
+        viewer::source::cache_file_for(cache.path(), &mesh, &facebem::PipelineParams::default());
+    std::fs::write(&path, b"not a facebem rig at all").unwrap();
+    let options = viewer::ViewerOptions {
+        cache_dir: Some(cache.path().to_path_buf()),
+        ..Default::default()
+    };
+    let mut harness = egui_kittest::Harness::builder()
+        .with_size([900.0, 600.0])
+        .wgpu()
+        .build_eframe(move |cc| viewer::ViewerApp::new(cc, options.clone()));
+    common::wait_idle(&mut harness);
+    let msg = harness.state().message().cloned().unwrap();
+    assert!(
+        !msg.is_error && msg.text.contains("computed"),
+        "{}",
+        msg.text
+    );
+    let model = harness.state().model().expect("rig computed").clone();
+    let reloaded = facebem::cache::load(&path).expect("the cache file was replaced");
+    assert_eq!(reloaded.basis, model.basis);
+}
