@@ -23,6 +23,7 @@ use crate::posed_mesh::{MeshVertex, PosedMesh, bounding_sphere, edge_indices};
 use crate::renderer::{LineVertex, ReadBackError};
 use crate::source;
 
+mod box_drag;
 mod panels;
 mod rig_editing;
 mod viewport;
@@ -116,6 +117,7 @@ pub struct ViewerApp {
     selection: Option<Selection>,
     edit_target: usize,
     box_edit: Option<[Box2; 4]>,
+    box_drag: Option<(usize, box_drag::BoxHandle)>,
     viewport_rect: Option<egui::Rect>,
     render_state: Option<egui_wgpu::RenderState>,
     has_wgpu: bool,
@@ -161,6 +163,7 @@ impl ViewerApp {
             selection: None,
             edit_target: 0,
             box_edit: None,
+            box_drag: None,
             viewport_rect: None,
             render_state: cc.wgpu_render_state.clone(),
             has_wgpu,

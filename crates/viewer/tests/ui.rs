@@ -535,6 +535,57 @@ fn edited_feature_boxes_re_place_the_muscles_and_invalid_boxes_are_refused() {
     );
     let lines_before = harness.state().overlay_line_vertices().to_vec();
 
+    // Drag the mouth box's bottom edge down in the viewport: only mouth min y changes.
+    let rect = harness.state().viewport_rect().unwrap();
+    let z = model
+        .rig
+        .shell
+        .vertices
+        .iter()
+        .take(model.rig.face_vertex_count)
+        .map(|p| p.z)
+        .fold(f64::NEG_INFINITY, f64::max);
+    let input_from_canonical = model.rig.canonical_from_input.inverse();
+    let aspect = rect.width() / rect.height();
+    let clip_from_world = harness.state_mut().camera_mut().clip_from_world(aspect);
+    let to_screen = |x: f64, y: f64| {
+        let p = input_from_canonical.transform_point3(glam::DVec3::new(x, y, z));
+        let ndc = clip_from_world.project_point3(p.as_vec3());
+        egui::pos2(
+            rect.left() + (ndc.x + 1.0) * 0.5 * rect.width(),
+            rect.top() + (1.0 - ndc.y) * 0.5 * rect.height(),
+        )
+    };
+    let p0 = to_screen(0.5 * (b.mouth.min.x + b.mouth.max.x), b.mouth.min.y);
+    let p1 = p0 + egui::vec2(0.0, 30.0);
+    let yaw = harness.state_mut().camera_mut().yaw;
+    harness.hover_at(p0);
+    harness.drag_at(p0);
+    harness.step();
+    harness.hover_at(p0 + egui::vec2(0.0, 15.0));
+    harness.step();
+    harness.hover_at(p1);
+    harness.step();
+    harness.drop_at(p1);
+    harness.run();
+    let dragged = *harness.state_mut().box_edit_mut().unwrap();
+    assert!(
+        dragged[3].min.y < b.mouth.min.y - 0.01 * model.rig.face_size,
+        "{:?}",
+        dragged[3]
+    );
+    assert_eq!(dragged[3].max, b.mouth.max);
+    assert_eq!(dragged[3].min.x, b.mouth.min.x);
+    assert_eq!(&dragged[..3], &[b.face, b.eye_l, b.eye_r]);
+    assert_eq!(
+        harness.state_mut().camera_mut().yaw,
+        yaw,
+        "a box drag does not orbit"
+    );
+    harness.get_by_label("Revert boxes").click();
+    harness.run();
+    assert_eq!(harness.state_mut().box_edit_mut().unwrap()[3], b.mouth);
+
     // Move the mouth box down by 8% of the face size and apply.
     let d = 0.08 * model.rig.face_size;
     harness

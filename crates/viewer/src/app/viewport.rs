@@ -17,13 +17,33 @@ impl ViewerApp {
         self.viewport_rect = Some(rect);
         let aspect = rect.width() / rect.height().max(1.0);
         let delta = response.drag_delta();
+        // Box editing: a drag that starts on a box edge (or Alt + inside a box) moves it.
+        if response.drag_started_by(egui::PointerButton::Primary) {
+            self.box_drag = None;
+            if self.overlays.boxes
+                && let Some(press) = ui.input(|i| i.pointer.press_origin())
+            {
+                let alt = ui.input(|i| i.modifiers.alt);
+                self.box_drag = self.grab_box(rect, press, alt);
+            }
+        }
+        if !response.dragged_by(egui::PointerButton::Primary) && !response.drag_started() {
+            self.box_drag = None;
+        }
+        if let (Some(grab), true) = (
+            self.box_drag,
+            response.dragged_by(egui::PointerButton::Primary),
+        ) && let Some(to) = response.interact_pointer_pos()
+        {
+            self.drag_box(rect, grab, to - delta, to);
+        }
         let pan = response.dragged_by(egui::PointerButton::Secondary)
             || response.dragged_by(egui::PointerButton::Middle)
             || (response.dragged_by(egui::PointerButton::Primary)
                 && ui.input(|i| i.modifiers.shift));
         if pan {
             self.camera.pan(Vec2::new(delta.x, delta.y), rect.height());
-        } else if response.dragged_by(egui::PointerButton::Primary) {
+        } else if response.dragged_by(egui::PointerButton::Primary) && self.box_drag.is_none() {
             self.camera.orbit(-delta.x * 0.01, delta.y * 0.01);
         }
         if response.hovered() {
