@@ -13,6 +13,8 @@
 //! exact linear sum.
 //!
 //! Memory: one dense K (8·(3N)² bytes) plus O(N · load cases); H and G are never held.
+//! Benchmark (assembly, LU rate, peak memory at ~1000/3000/5000 elements):
+//! `cargo run --release -p bem-core --example bench`.
 //!
 //! ## Example: hollow sphere with a prescribed radial displacement inside
 //!
