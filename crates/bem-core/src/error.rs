@@ -80,6 +80,17 @@ pub enum MeshError {
         /// Second triangle.
         second: usize,
     },
+    /// A connected component's normals point into the body (e.g. an inner cavity oriented like
+    /// the outer surface): just outside it along its normal the winding number is ≈ 1, not 0.
+    #[error(
+        "the component containing triangle {triangle} faces into the body (winding number {winding:.3} just outside it)"
+    )]
+    ComponentInward {
+        /// Largest triangle of the offending component.
+        triangle: usize,
+        /// Winding number of the whole surface at a point just off that triangle along its normal.
+        winding: f64,
+    },
     /// The enclosed volume is not positive: normals point inward.
     #[error("the enclosed volume is {volume:e} (must be positive): the surface is oriented inward")]
     NotOutward {

@@ -93,6 +93,14 @@ impl SurfaceMesh {
         if volume.is_nan() || volume <= 0.0 {
             return Err(MeshError::NotOutward { volume });
         }
+        check_components_outward(
+            &vertices,
+            &triangles,
+            &centroids,
+            &normals,
+            &areas,
+            &longest_edges,
+        )?;
         Ok(Self {
             vertices,
             triangles,
@@ -228,6 +236,75 @@ fn check_closed_manifold_oriented(triangles: &[[u32; 3]]) -> Result<(), MeshErro
     open.sort_unstable();
     if let Some(&(a, b, triangle)) = open.first() {
         return Err(MeshError::OpenEdge { a, b, triangle });
+    }
+    Ok(())
+}
+
+/// Generalised winding number of the closed surface at `p` (1 inside, 0 outside for an
+/// outward-oriented surface), from the solid angles of the triangles (Van Oosterom–Strackee).
+fn winding_number(vertices: &[DVec3], triangles: &[[u32; 3]], p: DVec3) -> f64 {
+    let mut total = 0.0;
+    for tri in triangles {
+        let [a, b, c] = tri.map(|i| vertices[i as usize] - p);
+        let (la, lb, lc) = (a.length(), b.length(), c.length());
+        let det = a.dot(b.cross(c));
+        let den = la * lb * lc + a.dot(b) * lc + a.dot(c) * lb + b.dot(c) * la;
+        total += 2.0 * det.atan2(den);
+    }
+    total / (4.0 * std::f64::consts::PI)
+}
+
+/// Each connected component must face outward from the body, not only the total volume be
+/// positive: a point just off its largest triangle along the normal must be outside the body.
+/// (Catches e.g. a hollow sphere whose inner sphere is oriented like the outer one.)
+fn check_components_outward(
+    vertices: &[DVec3],
+    triangles: &[[u32; 3]],
+    centroids: &[DVec3],
+    normals: &[DVec3],
+    areas: &[f64],
+    longest: &[f64],
+) -> Result<(), MeshError> {
+    // union-find over vertices
+    let mut parent: Vec<u32> = (0..vertices.len() as u32).collect();
+    fn find(parent: &mut [u32], mut x: u32) -> u32 {
+        while parent[x as usize] != x {
+            parent[x as usize] = parent[parent[x as usize] as usize];
+            x = parent[x as usize];
+        }
+        x
+    }
+    for tri in triangles {
+        let r0 = find(&mut parent, tri[0]);
+        for &v in &tri[1..] {
+            let r = find(&mut parent, v);
+            parent[r as usize] = r0;
+        }
+    }
+    // largest triangle of each component
+    let mut best: HashMap<u32, usize> = HashMap::new();
+    for (t, tri) in triangles.iter().enumerate() {
+        let root = find(&mut parent, tri[0]);
+        let entry = best.entry(root).or_insert(t);
+        if areas[t] > areas[*entry] {
+            *entry = t;
+        }
+    }
+    if best.len() < 2 {
+        return Ok(()); // one component: the positive volume already decides
+    }
+    let mut picks: Vec<usize> = best.into_values().collect();
+    picks.sort_unstable();
+    for t in picks {
+        // 1% of the triangle's size off its centroid: its own solid angle is ≈ 2π on the near side
+        let p = centroids[t] + normals[t] * (0.01 * (2.0 * areas[t]).sqrt().min(longest[t]));
+        let winding = winding_number(vertices, triangles, p);
+        if winding > 0.5 {
+            return Err(MeshError::ComponentInward {
+                triangle: t,
+                winding,
+            });
+        }
     }
     Ok(())
 }

@@ -251,3 +251,37 @@ fn material_from_a_file_is_validated() {
         .expect_err("ν = 0.5 must be rejected");
     assert!(err.to_string().contains("Poisson ratio 0.5"), "{err}");
 }
+
+#[test]
+fn cavity_oriented_like_the_outer_surface_is_rejected() {
+    // hollow sphere whose inner sphere is (wrongly) outward-oriented: total volume is positive,
+    // so only the per-component check catches it
+    let (vi, ti) = shapes::icosphere(1, 1.0);
+    let (vo, to) = shapes::icosphere(1, 2.0);
+    let offset = vi.len() as u32;
+    let mut v = vi;
+    v.extend(vo);
+    let mut t = ti;
+    let inner_count = t.len();
+    t.extend(to.into_iter().map(|tri| tri.map(|i| i + offset)));
+    let err = SurfaceMesh::new(v, t).unwrap_err();
+    match err {
+        MeshError::ComponentInward { triangle, winding } => {
+            assert!(
+                triangle < inner_count,
+                "blamed the outer sphere: {triangle}"
+            );
+            assert!((winding - 1.0).abs() < 0.05, "{winding}");
+        }
+        other => panic!("expected ComponentInward, got {other}"),
+    }
+    // the correctly oriented hollow sphere and two disjoint spheres are accepted
+    assert!(shapes::hollow_sphere(1.0, 2.0, 1).is_ok());
+    let (va, ta) = shapes::icosphere(1, 1.0);
+    let n = va.len() as u32;
+    let mut v: Vec<DVec3> = va.clone();
+    v.extend(va.iter().map(|p| *p + DVec3::new(5.0, 0.0, 0.0)));
+    let mut t = ta.clone();
+    t.extend(ta.iter().map(|tri| tri.map(|i| i + n)));
+    assert!(SurfaceMesh::new(v, t).is_ok());
+}
