@@ -14,6 +14,9 @@ fn main() -> anyhow::Result<()> {
         params.large_face.max_triangles = n.parse()?;
         params.large_face.target_triangles = n.parse()?;
     }
+    if let Ok(e) = std::env::var("MAX_ERROR") {
+        params.large_face.max_error = e.parse()?;
+    }
     let prepared = facebem::prepare(&mesh, &params)?;
     let si = prepared.rig.shell.self_intersections();
     println!(
@@ -22,6 +25,20 @@ fn main() -> anyhow::Result<()> {
         si.len(),
         &si[..si.len().min(10)]
     );
+    for pair in si.iter().take(6) {
+        let c: Vec<String> = pair
+            .iter()
+            .map(|&e| {
+                format!(
+                    "{} {:?} {:.2}",
+                    e,
+                    prepared.rig.shell.tags[e as usize],
+                    prepared.rig.shell.centroid(e as usize)
+                )
+            })
+            .collect();
+        println!("  intersecting: {}", c.join(" x "));
+    }
     let worst = prepared
         .simulated
         .triangles

@@ -19,6 +19,9 @@ pub struct LargeFaceParams {
     /// Triangle count to simplify to (meshoptimizer stops near it; borders are never touched,
     /// so a face with long contours may keep a few more).
     pub target_triangles: usize,
+    /// Largest geometric deviation simplification may introduce, relative to the mesh's
+    /// extent; simplification stops before the target count rather than exceed it.
+    pub max_error: f32,
 }
 
 impl Default for LargeFaceParams {
@@ -28,6 +31,7 @@ impl Default for LargeFaceParams {
         LargeFaceParams {
             max_triangles: 1500,
             target_triangles: 1500,
+            max_error: 1.0,
         }
     }
 }
@@ -81,13 +85,14 @@ pub struct Simplified {
 ///         triangles.push([v, v + n as u32 + 1, v + n as u32]);
 ///     }
 /// }
-/// let s = simplify(&vertices, &triangles, 200).unwrap();
+/// let s = simplify(&vertices, &triangles, 200, 1.0).unwrap();
 /// assert!(s.triangles.len() <= 300);
 /// ```
 pub fn simplify(
     vertices: &[DVec3],
     triangles: &[[u32; 3]],
     target_triangles: usize,
+    max_error: f32,
 ) -> Result<Simplified, SimplifyError> {
     if target_triangles < 16 {
         return Err(SimplifyError::TargetTooSmall(target_triangles));
@@ -113,7 +118,7 @@ pub fn simplify(
             &indices,
             &adapter,
             target_triangles * 3,
-            1.0,
+            max_error,
             meshopt::SimplifyOptions::LockBorder,
             None,
         ),
@@ -292,7 +297,7 @@ mod tests {
     #[test]
     fn simplify_keeps_borders_and_transfer_reproduces_linear_fields() {
         let (vertices, triangles) = grid(31);
-        let s = simplify(&vertices, &triangles, 300).unwrap();
+        let s = simplify(&vertices, &triangles, 300, 1.0).unwrap();
         assert!(s.triangles.len() < 600, "{} triangles", s.triangles.len());
         // Every border vertex survives.
         let border = (0..vertices.len()).filter(|&i| {
@@ -325,9 +330,12 @@ mod tests {
     #[test]
     fn bad_simplify_inputs() {
         let (v, t) = grid(3);
-        assert_eq!(simplify(&v, &t, 4), Err(SimplifyError::TargetTooSmall(4)));
+        assert_eq!(
+            simplify(&v, &t, 4, 1.0),
+            Err(SimplifyError::TargetTooSmall(4))
+        );
         assert!(matches!(
-            simplify(&v[..4], &t, 100),
+            simplify(&v[..4], &t, 100, 1.0),
             Err(SimplifyError::IndexOutOfRange { .. })
         ));
     }

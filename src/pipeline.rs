@@ -52,6 +52,10 @@ pub struct PrecomputeReport {
     pub shell_elements: usize,
     /// Unknowns of the dense system (3 per element).
     pub dofs: usize,
+    /// Pairs of shell elements that intersect each other. Non-zero means the elastic body is
+    /// not a valid solid there (e.g. an input whose lips interpenetrate): the BEM is ill-posed
+    /// and responses near those elements are unreliable.
+    pub shell_self_intersections: usize,
     /// Seconds spent in prep (simplification, rig).
     pub prep_seconds: f64,
     /// Seconds spent in the BEM solve (assembly, factorisation, solves).
@@ -161,6 +165,7 @@ pub fn prepare(mesh: &FaceMesh, params: &PipelineParams) -> Result<PreparedRig, 
             &mesh.vertices,
             &mesh.triangles,
             params.large_face.target_triangles,
+            params.large_face.max_error,
         )?;
         let sim_mesh = FaceMesh::from_triangles(&s.vertices, &s.triangles)?;
         (sim_mesh, Some(s))
@@ -208,6 +213,7 @@ pub fn build_face_model(
     if rig.muscles.is_empty() {
         return Err(PipelineError::NoMuscles);
     }
+    let shell_self_intersections = rig.shell.self_intersections().len();
     control.report(Stage::Prep, 1, 1);
     check_cancel(control)?;
     let prep_seconds = t0.elapsed().as_secs_f64();
@@ -259,6 +265,7 @@ pub fn build_face_model(
         simulated_triangles: simulated.triangles.len(),
         shell_elements: rig.shell.triangles.len(),
         dofs: 3 * rig.shell.triangles.len(),
+        shell_self_intersections,
         prep_seconds,
         solve_seconds,
         transfer_seconds: t2.elapsed().as_secs_f64(),

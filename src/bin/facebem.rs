@@ -211,6 +211,7 @@ fn rig(face: &Path, output: &Path, muscles: Option<&Path>, solver: &SolverArgs) 
         large_face: LargeFaceParams {
             max_triangles: solver.max_triangles,
             target_triangles: solver.target_triangles,
+            ..LargeFaceParams::default()
         },
         ..PipelineParams::default()
     };
@@ -223,6 +224,12 @@ fn rig(face: &Path, output: &Path, muscles: Option<&Path>, solver: &SolverArgs) 
     let model = compute(&mesh, obj_source, &params)?;
     cache::save(output, &model)?;
     let r = &model.report;
+    if r.shell_self_intersections > 0 {
+        eprintln!(
+            "warning: the shell has {} pairs of intersecting elements (does the input surface cross itself, e.g. at the lips?); responses near them are unreliable",
+            r.shell_self_intersections
+        );
+    }
     println!(
         "{}: {} front triangles ({} simulated), {} shell elements, {} muscles; prep {:.2} s, solve {:.2} s",
         output.display(),
