@@ -34,7 +34,7 @@ pub enum OpenError {
         path: PathBuf,
         /// What is wrong with it.
         #[source]
-        source: face_prep::PrepError,
+        source: Box<face_prep::PrepError>,
     },
     /// The rig/cache file is invalid.
     #[error(transparent)]
@@ -84,7 +84,7 @@ pub fn read_face(path: &Path) -> Result<(FaceMesh, Option<String>), OpenError> {
 fn face_from_bytes(path: &Path, bytes: &[u8]) -> Result<(FaceMesh, Option<String>), OpenError> {
     let face_err = |source| OpenError::Face {
         path: path.to_path_buf(),
-        source,
+        source: Box::new(source),
     };
     let is_obj = path
         .extension()
@@ -149,7 +149,7 @@ pub fn default_cache_dir() -> PathBuf {
 pub fn default_face() -> Result<FaceMesh, OpenError> {
     FaceMesh::from_obj_str(DEFAULT_FACE_OBJ).map_err(|source| OpenError::Face {
         path: PathBuf::from(DEFAULT_FACE_NAME),
-        source,
+        source: Box::new(source),
     })
 }
 

@@ -495,3 +495,44 @@ fn cancel_during_the_solve_stops_it() {
     let err = build_face_model(&mesh, &PipelineParams::default(), &control).unwrap_err();
     assert!(matches!(err, facebem::PipelineError::Cancelled), "{err}");
 }
+
+/// `load_or_build`: computes and saves on a miss, loads on a hit, recomputes over a corrupt file.
+#[test]
+fn load_or_build_uses_the_cache_and_recovers_from_corruption() {
+    use facebem::open::{CacheStatus, load_or_build};
+    let (mesh, obj) = facebem::open::read_face(&support::asset(support::FACES[0])).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("face.rig");
+    let params = PipelineParams::default();
+    let (first, status) =
+        load_or_build(&mesh, obj.clone(), &params, &path, &Control::new()).unwrap();
+    assert!(
+        matches!(
+            status,
+            CacheStatus::Computed {
+                save_error: None,
+                ..
+            }
+        ),
+        "{status:?}"
+    );
+    let (second, status) =
+        load_or_build(&mesh, obj.clone(), &params, &path, &Control::new()).unwrap();
+    assert_eq!(status, CacheStatus::Loaded);
+    assert_eq!(second.basis, first.basis);
+    assert_eq!(second.obj_source, obj);
+    std::fs::write(&path, b"FACEBEM\x1a garbage").unwrap();
+    let (third, status) = load_or_build(&mesh, obj, &params, &path, &Control::new()).unwrap();
+    match status {
+        CacheStatus::Computed {
+            reason,
+            save_error: None,
+        } => assert!(reason.contains("face.rig"), "{reason}"),
+        other => panic!("{other:?}"),
+    }
+    assert_eq!(third.basis, first.basis);
+    assert!(
+        facebem::cache::load(&path).is_ok(),
+        "the corrupt cache was replaced"
+    );
+}
