@@ -9,7 +9,7 @@ use crate::BemError;
 pub enum Stage {
     /// Column-block assembly of K and the right-hand sides (`done`/`total` = element columns).
     Assembly,
-    /// Dense LU factorisation (reported at start, `done = 0`, and end, `done = total`).
+    /// Dense LU factorisation (`done`/`total` = columns factorised, reported per panel).
     Factorisation,
     /// Triangular solves for all right-hand sides (`total` = number of right-hand sides).
     Solve,
@@ -29,7 +29,8 @@ pub struct Progress {
 /// Progress callback and cancellation flag for long computations. `Control::default()` does neither.
 ///
 /// The callback may be called from worker threads; cancellation is checked between column blocks of
-/// the assembly and between stages (the LU itself runs to completion once started).
+/// the assembly, between panels of the LU (every [`crate::dense::LU_PANEL`] columns) and between
+/// stages.
 #[derive(Clone, Copy, Default)]
 pub struct Control<'a> {
     /// When set to `true`, the computation stops and returns [`BemError::Cancelled`].

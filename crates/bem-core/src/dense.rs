@@ -2,12 +2,17 @@
 
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::lu::partial_pivoting::{factor, solve};
+use faer::linalg::matmul::matmul;
+use faer::linalg::triangular_solve::solve_unit_lower_triangular_in_place;
 use faer::perm::PermRef;
 use faer::prelude::{Reborrow, ReborrowMut};
-use faer::{Mat, MatMut, Par};
+use faer::{Accum, Mat, MatMut, Par};
 use rayon::prelude::*;
 
-use crate::BemError;
+use crate::{BemError, Control, Stage};
+
+/// Columns per panel of the blocked LU (progress and cancellation granularity).
+pub const LU_PANEL: usize = 256;
 
 /// Pivots smaller than this × n × the largest pivot mark the matrix numerically singular.
 const SINGULAR_PIVOT_RATIO: f64 = f64::EPSILON;
@@ -34,7 +39,18 @@ impl DenseLu {
     /// assert!((4.0 * b[(0, 0)] + b[(1, 0)] - 1.0).abs() < 1e-14);
     /// assert!(bem_core::DenseLu::factor(faer::mat![[1.0, 2.0], [2.0, 4.0]]).is_err());
     /// ```
-    pub fn factor(mut matrix: Mat<f64>) -> Result<Self, BemError> {
+    pub fn factor(matrix: Mat<f64>) -> Result<Self, BemError> {
+        Self::factor_with(matrix, &Control::default())
+    }
+
+    /// [`DenseLu::factor`] with progress (`Stage::Factorisation`, done/total = columns) and
+    /// cancellation between panels.
+    ///
+    /// Right-looking blocked LU: each panel of [`LU_PANEL`] columns is factorised with faer's
+    /// recursive partial-pivoting LU, its row interchanges are applied to the other columns, then
+    /// the trailing matrix is updated with faer's parallel triangular solve and matrix product
+    /// (where nearly all the flops are).
+    pub fn factor_with(mut matrix: Mat<f64>, control: &Control<'_>) -> Result<Self, BemError> {
         let n = matrix.nrows();
         if matrix.ncols() != n {
             return Err(BemError::WrongLength {
@@ -52,28 +68,95 @@ impl DenseLu {
             });
         }
         let par = Par::rayon(0);
-        let mut perm = vec![0usize; n];
-        let mut perm_inv = vec![0usize; n];
+        let mut perm: Vec<usize> = (0..n).collect();
+        let mut panel_perm = vec![0usize; n];
+        let mut panel_perm_inv = vec![0usize; n];
+        let mut at = vec![0usize; n]; // panel-local row currently at each position
+        let mut position = vec![0usize; n]; // position of each panel-local row
+        let mut swaps: Vec<(usize, usize)> = Vec::with_capacity(LU_PANEL);
         let mut buf = MemBuffer::new(factor::lu_in_place_scratch::<usize, f64>(
             n,
-            n,
+            LU_PANEL,
             par,
             Default::default(),
         ));
-        let stack = MemStack::new(&mut buf);
-        let _ = factor::lu_in_place(
-            matrix.as_mut(),
-            &mut perm,
-            &mut perm_inv,
-            par,
-            stack,
-            Default::default(),
-        );
+        let mut k = 0;
+        while k < n {
+            control.check()?;
+            control.report(Stage::Factorisation, k, n);
+            let nb = LU_PANEL.min(n - k);
+            let m = n - k;
+            {
+                let panel = matrix.as_mut().submatrix_mut(k, k, m, nb);
+                let stack = MemStack::new(&mut buf);
+                let _ = factor::lu_in_place(
+                    panel,
+                    &mut panel_perm[..m],
+                    &mut panel_perm_inv[..m],
+                    par,
+                    stack,
+                    Default::default(),
+                );
+            }
+            // the panel's row permutation as the sequence of interchanges that produced it
+            swaps.clear();
+            for i in 0..m {
+                at[i] = i;
+                position[i] = i;
+            }
+            for i in 0..nb {
+                let row = panel_perm[i];
+                let j = position[row];
+                if j != i {
+                    swaps.push((k + i, k + j));
+                    let displaced = at[i];
+                    at.swap(i, j);
+                    position[displaced] = j;
+                    position[row] = i;
+                }
+            }
+            for &(i, j) in &swaps {
+                perm.swap(i, j);
+            }
+            if !swaps.is_empty() {
+                let chunk = 32;
+                matrix
+                    .par_col_chunks_mut(chunk)
+                    .enumerate()
+                    .for_each(|(c, block)| {
+                        for (l, col) in block.col_iter_mut().enumerate() {
+                            let column = c * chunk + l;
+                            if (k..k + nb).contains(&column) {
+                                continue;
+                            }
+                            if let Some(col) = col.try_as_col_major_mut() {
+                                let col = col.as_slice_mut();
+                                for &(i, j) in &swaps {
+                                    col.swap(i, j);
+                                }
+                            }
+                        }
+                    });
+            }
+            if nb < m {
+                let rest = matrix.as_mut().submatrix_mut(k, k, m, m);
+                let (l11, mut a12, l21, a22) = rest.split_at_mut(nb, nb);
+                solve_unit_lower_triangular_in_place(l11.rb(), a12.rb_mut(), par);
+                matmul(a22, Accum::Add, l21.rb(), a12.rb(), -1.0, par);
+            }
+            k += nb;
+        }
+        control.report(Stage::Factorisation, n, n);
         let (mut min, mut min_index, mut max) = (f64::INFINITY, 0, 0.0f64);
         for k in 0..n {
             let p = matrix[(k, k)].abs();
             if !p.is_finite() {
-                return Err(BemError::NonFinite { what: "LU factor" });
+                // finite input, non-finite factor: a zero pivot was divided by
+                return Err(BemError::Singular {
+                    index: k,
+                    pivot: 0.0,
+                    max_pivot: max,
+                });
             }
             if p < min {
                 min = p;
@@ -81,13 +164,16 @@ impl DenseLu {
             }
             max = max.max(p);
         }
-        // written so that a NaN pivot also counts as singular
-        if n > 0 && (min.is_nan() || min <= SINGULAR_PIVOT_RATIO * n as f64 * max) {
+        if n > 0 && min <= SINGULAR_PIVOT_RATIO * n as f64 * max {
             return Err(BemError::Singular {
                 index: min_index,
                 pivot: min,
                 max_pivot: max,
             });
+        }
+        let mut perm_inv = vec![0usize; n];
+        for (i, &p) in perm.iter().enumerate() {
+            perm_inv[p] = i;
         }
         Ok(Self {
             lu: matrix,

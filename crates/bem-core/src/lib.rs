@@ -45,7 +45,7 @@
 mod assembly;
 mod bc;
 mod control;
-mod dense;
+pub mod dense;
 mod error;
 pub mod kernels;
 mod material;

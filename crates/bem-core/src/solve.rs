@@ -36,10 +36,7 @@ impl LinearSystem {
             ..
         } = self;
         control.check()?;
-        let size = matrix.nrows();
-        control.report(Stage::Factorisation, 0, size);
-        let lu = DenseLu::factor(matrix)?;
-        control.report(Stage::Factorisation, size, size);
+        let lu = DenseLu::factor_with(matrix, control)?;
         control.check()?;
         let count = rhs.ncols();
         control.report(Stage::Solve, 0, count);

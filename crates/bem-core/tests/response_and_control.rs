@@ -281,3 +281,65 @@ fn element_to_vertex_is_area_weighted() {
     // linear field of centroids is reproduced closely at the vertices (sanity of weighting)
     assert!(element_to_vertex(&mesh, &values[1..]).is_err());
 }
+
+#[test]
+fn blocked_lu_matches_faer_and_has_small_residual() {
+    use faer::linalg::solvers::Solve;
+    use rand::{Rng, SeedableRng};
+    // 3 full panels plus a partial one, and a matrix that needs pivoting (small diagonal)
+    let n = 3 * bem_core::dense::LU_PANEL + 77;
+    let mut rng = rand::rngs::StdRng::seed_from_u64(11);
+    let a = faer::Mat::<f64>::from_fn(n, n, |i, j| {
+        let v: f64 = rng.random::<f64>() - 0.5;
+        if i == j { 1e-3 * v } else { v }
+    });
+    let b = faer::Mat::<f64>::from_fn(n, 3, |i, j| ((i * 7 + j * 3) % 11) as f64 - 5.0);
+    let lu = DenseLu::factor(a.clone()).expect("regular");
+    let mut x = b.clone();
+    lu.solve_in_place(x.as_mut()).expect("solve");
+    let residual = (&a * &x - &b).norm_l2() / b.norm_l2();
+    let reference = a.partial_piv_lu().solve(&b);
+    let diff = (&x - &reference).norm_l2() / reference.norm_l2();
+    eprintln!("blocked LU: residual {residual:e}, difference to faer {diff:e}");
+    assert!(residual < 1e-11, "{residual:e}");
+    assert!(diff < 1e-9, "{diff:e}");
+}
+
+#[test]
+fn factorisation_reports_panels_and_can_be_cancelled() {
+    let n = 4 * bem_core::dense::LU_PANEL;
+    let a = faer::Mat::<f64>::from_fn(n, n, |i, j| {
+        if i == j {
+            4.0
+        } else {
+            1.0 / (1.0 + (i + 2 * j) as f64)
+        }
+    });
+    let seen = Mutex::new(Vec::new());
+    let record = |p: Progress| seen.lock().expect("lock").push(p.done);
+    let control = Control {
+        cancel: None,
+        progress: Some(&record),
+    };
+    DenseLu::factor_with(a.clone(), &control).expect("regular");
+    assert_eq!(
+        seen.into_inner().expect("lock"),
+        (0..=4)
+            .map(|k| k * bem_core::dense::LU_PANEL)
+            .collect::<Vec<_>>()
+    );
+    let cancel = AtomicBool::new(false);
+    let stop = |p: Progress| {
+        if p.done > 0 {
+            cancel.store(true, Ordering::Relaxed);
+        }
+    };
+    let control = Control {
+        cancel: Some(&cancel),
+        progress: Some(&stop),
+    };
+    assert_eq!(
+        DenseLu::factor_with(a, &control).unwrap_err(),
+        BemError::Cancelled
+    );
+}
