@@ -7,8 +7,9 @@
 //! ([`kernels`]), a 7-point triangle rule refined by adaptive 1→4 subdivision for near pairs
 //! ([`QuadratureParams`]), the analytic singular G block ([`singular`]) and the rigid-body row sum
 //! for the diagonal H blocks. The mixed system `K x = y` is assembled directly, column block by
-//! column block in parallel ([`LinearSystem::assemble`]), and solved with faer's dense LU with
-//! partial pivoting ([`DenseLu`]) for many right-hand sides at once. [`ResponseBasis`]
+//! column block in parallel ([`LinearSystem::assemble`]), and solved with a blocked dense LU with
+//! partial pivoting built on faer's kernels ([`DenseLu`]) for many right-hand sides at once.
+//! Both stages report progress and can be cancelled ([`Control`]). [`ResponseBasis`]
 //! precomputes the response to each of several displacement groups so that any combination is an
 //! exact linear sum.
 //!
