@@ -37,6 +37,15 @@ unsafe impl GlobalAlloc for Counting {
         }
         p
     }
+    unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
+        // SAFETY: same contract as System.alloc_zeroed (calloc: fresh pages are not touched).
+        let p = unsafe { System.alloc_zeroed(layout) };
+        if !p.is_null() {
+            let now = CURRENT.fetch_add(layout.size(), Ordering::Relaxed) + layout.size();
+            PEAK.fetch_max(now, Ordering::Relaxed);
+        }
+        p
+    }
     unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
         // SAFETY: same contract as System.dealloc.
         unsafe { System.dealloc(ptr, layout) };
@@ -81,12 +90,13 @@ fn main() -> anyhow_free::Result {
     let threads = rayon::current_num_threads();
     println!("bem-core benchmark, {threads} rayon threads");
     println!(
-        "{:>6} {:>6} | {:>9} {:>9} {:>9} | {:>8} {:>8} {:>6} | {:>7} | {:>6} {:>8} {:>11}",
+        "{:>6} {:>6} | {:>9} {:>9} {:>9} {:>7} | {:>8} {:>8} {:>6} | {:>7} | {:>6} {:>8} {:>11}",
         "N",
         "3N",
         "asm par",
         "asm 1thr",
         "naive HG",
+        "Mat0 K",
         "LU GF/s",
         "faer GF/s",
         "ratio",
@@ -128,6 +138,12 @@ fn main() -> anyhow_free::Result {
         let asm_single = t.elapsed().as_secs_f64();
         drop(sys1);
 
+        // for comparison: the serial zero fill of faer::Mat::zeros that DenseMatrix avoids
+        let t = Instant::now();
+        let zeros = faer::Mat::<f64>::zeros(dof, dof);
+        let t_zero = t.elapsed().as_secs_f64();
+        drop(zeros);
+
         let baseline = CURRENT.load(Ordering::Relaxed);
         PEAK.store(baseline, Ordering::Relaxed);
         let t = Instant::now();
@@ -167,12 +183,13 @@ fn main() -> anyhow_free::Result {
         let flops = 2.0 / 3.0 * (dof as f64).powi(3);
         let k_bytes = 8.0 * (dof as f64).powi(2);
         println!(
-            "{:>6} {:>6} | {:>9.2} {:>9.2} {} | {:>8.1} {:>8.1} {:>6.2} | {:>7.3} | {:>6.3} {:>8.0} {:>11.0}",
+            "{:>6} {:>6} | {:>9.2} {:>9.2} {} {:>7.2} | {:>8.1} {:>8.1} {:>6.2} | {:>7.3} | {:>6.3} {:>8.0} {:>11.0}",
             n,
             dof,
             asm_par,
             asm_single,
             naive,
+            t_zero,
             flops / t_lu * 1e-9,
             flops / t_random * 1e-9,
             t_random / t_lu,
@@ -182,6 +199,9 @@ fn main() -> anyhow_free::Result {
             retained as f64 / 1e6
         );
     }
+    println!(
+        "Mat0 K = faer::Mat::zeros of one K alone (serial zero fill, which bem-core's lazily zeroed DenseMatrix avoids)"
+    );
     println!(
         "times in seconds; ratio = LU rate of K / faer rate on random matrix; peak/K = peak heap of"
     );

@@ -14,6 +14,7 @@ use faer::{Mat, MatMut};
 use glam::DVec3;
 use rayon::prelude::*;
 
+use crate::DenseMatrix;
 use crate::kernels::{Block, KernelConstants};
 use crate::quadrature::ElementQuad;
 use crate::singular::g_diagonal;
@@ -38,7 +39,7 @@ pub enum RigidModes {
 #[derive(Debug, Clone)]
 pub struct LinearSystem {
     /// K (3N × 3N, or 3N+6 with the gauge fixed).
-    pub matrix: Mat<f64>,
+    pub matrix: DenseMatrix,
     /// Right-hand sides, one column per load case.
     pub rhs: Mat<f64>,
     /// Which elements have a prescribed displacement.
@@ -180,7 +181,7 @@ impl LinearSystem {
         let dof = 3 * n;
         let size = dof + if gauge_fixed { 6 } else { 0 };
         let rhs_count = loads.rhs_count();
-        let mut matrix = try_zeros(size, size)?;
+        let mut matrix = DenseMatrix::zeros(size, size)?;
         let consts = KernelConstants::new(material);
         let quads: Vec<ElementQuad> = (0..n).map(|e| ElementQuad::new(mesh, e)).collect();
         let centroids = mesh.centroids();
@@ -194,8 +195,11 @@ impl LinearSystem {
         let qp = params.quadrature;
         control.report(Stage::Assembly, 0, n);
 
-        matrix.par_col_chunks_mut(3).enumerate().try_for_each(
-            |(j, block)| -> Result<(), BemError> {
+        matrix
+            .as_mut()
+            .par_col_chunks_mut(3)
+            .enumerate()
+            .try_for_each(|(j, block)| -> Result<(), BemError> {
                 control.check()?;
                 let cols = three_columns(block).ok_or(BemError::Internal {
                     what: "a column block of K is not 3 contiguous columns",
@@ -235,8 +239,7 @@ impl LinearSystem {
                     control.report(Stage::Assembly, d, n);
                 }
                 Ok(())
-            },
-        )?;
+            })?;
 
         // reduce the per-thread partials
         let mut total = Partial::new(n, dof, rhs_count);

@@ -6,10 +6,10 @@ use faer::linalg::matmul::matmul;
 use faer::linalg::triangular_solve::solve_unit_lower_triangular_in_place;
 use faer::perm::PermRef;
 use faer::prelude::{Reborrow, ReborrowMut};
-use faer::{Accum, Mat, MatMut, Par};
+use faer::{Accum, MatMut, Par};
 use rayon::prelude::*;
 
-use crate::{BemError, Control, Stage};
+use crate::{BemError, Control, DenseMatrix, Stage};
 
 /// Columns per panel of the blocked LU (progress and cancellation granularity).
 pub const LU_PANEL: usize = 256;
@@ -20,13 +20,14 @@ const SINGULAR_PIVOT_RATIO: f64 = f64::EPSILON;
 /// An LU factorisation `P A = L U` of a square dense matrix, computed in place.
 #[derive(Debug, Clone)]
 pub struct DenseLu {
-    lu: Mat<f64>,
+    lu: DenseMatrix,
     perm: Vec<usize>,
     perm_inv: Vec<usize>,
 }
 
 impl DenseLu {
-    /// Factorises `matrix` in place with partial pivoting on all rayon threads.
+    /// Factorises `matrix` in place with partial pivoting on all rayon threads (a `faer::Mat` is
+    /// copied into a [`DenseMatrix`] first; a `DenseMatrix` is used as is).
     ///
     /// Fails with [`BemError::NonFinite`] on NaN/inf entries and [`BemError::Singular`] when a pivot
     /// is below `n·ε` times the largest one (the solve would return garbage or NaNs).
@@ -39,7 +40,7 @@ impl DenseLu {
     /// assert!((4.0 * b[(0, 0)] + b[(1, 0)] - 1.0).abs() < 1e-14);
     /// assert!(bem_core::DenseLu::factor(faer::mat![[1.0, 2.0], [2.0, 4.0]]).is_err());
     /// ```
-    pub fn factor(matrix: Mat<f64>) -> Result<Self, BemError> {
+    pub fn factor(matrix: impl Into<DenseMatrix>) -> Result<Self, BemError> {
         Self::factor_with(matrix, &Control::default())
     }
 
@@ -50,7 +51,11 @@ impl DenseLu {
     /// recursive partial-pivoting LU, its row interchanges are applied to the other columns, then
     /// the trailing matrix is updated with faer's parallel triangular solve and matrix product
     /// (where nearly all the flops are).
-    pub fn factor_with(mut matrix: Mat<f64>, control: &Control<'_>) -> Result<Self, BemError> {
+    pub fn factor_with(
+        matrix: impl Into<DenseMatrix>,
+        control: &Control<'_>,
+    ) -> Result<Self, BemError> {
+        let mut matrix: DenseMatrix = matrix.into();
         let n = matrix.nrows();
         if matrix.ncols() != n {
             return Err(BemError::WrongLength {
@@ -60,8 +65,9 @@ impl DenseLu {
             });
         }
         let finite = matrix
-            .par_col_chunks_mut(1)
-            .all(|c| c.col_iter().all(|c| c.iter().all(|v| v.is_finite())));
+            .as_slice()
+            .par_chunks(1 << 16)
+            .all(|c| c.iter().all(|v| v.is_finite()));
         if !finite {
             return Err(BemError::NonFinite {
                 what: "system matrix",
@@ -121,6 +127,7 @@ impl DenseLu {
             if !swaps.is_empty() {
                 let chunk = 32;
                 matrix
+                    .as_mut()
                     .par_col_chunks_mut(chunk)
                     .enumerate()
                     .for_each(|(c, block)| {
