@@ -7,9 +7,9 @@
 //! sum, from which the diagonal blocks `h_ii = −Σ_{j≠i} h_ij` (rigid-body trick, eq. 4.5) are
 //! put in at the end. Neither H nor G is ever held whole.
 
-use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
+use faer::reborrow::ReborrowMut;
 use faer::{Mat, MatMut};
 use glam::DVec3;
 use rayon::prelude::*;
@@ -50,7 +50,11 @@ pub struct LinearSystem {
     pub gauge_fixed: bool,
 }
 
-/// Per-thread accumulators: H row sums and right-hand sides.
+/// Number of contiguous column ranges whose row sums are accumulated separately during assembly
+/// (enough to keep any core count busy; bounded so their memory stays a few % of K).
+const REDUCTION_RANGES: usize = 64;
+
+/// Accumulators of one column range: H row sums and right-hand sides.
 struct Partial {
     row_sums: Vec<Block>,
     rhs: Vec<f64>,
@@ -186,65 +190,69 @@ impl LinearSystem {
         let quads: Vec<ElementQuad> = (0..n).map(|e| ElementQuad::new(mesh, e)).collect();
         let centroids = mesh.centroids();
         let modes = gauge_fixed.then(|| rigid_mode_rows(mesh));
-        let threads = rayon::current_num_threads().max(1);
-        let partials: Vec<Mutex<Partial>> = (0..threads)
-            .map(|_| Mutex::new(Partial::new(n, dof, rhs_count)))
-            .collect();
+        // Columns go to a fixed number of contiguous ranges, each assembled in column order with
+        // its own partial row sums, and the partials are added in range order: the result is
+        // bit-for-bit the same whatever the thread count or the work stealing did.
+        let width = n.div_ceil(REDUCTION_RANGES).max(1);
         let done = AtomicUsize::new(0);
         let step = (n / 100).max(1);
         let qp = params.quadrature;
         control.report(Stage::Assembly, 0, n);
 
-        matrix
+        let partials: Vec<Option<Partial>> = matrix
             .as_mut()
-            .par_col_chunks_mut(3)
+            .par_col_chunks_mut(3 * width)
             .enumerate()
-            .try_for_each(|(j, block)| -> Result<(), BemError> {
-                control.check()?;
-                let cols = three_columns(block).ok_or(BemError::Internal {
-                    what: "a column block of K is not 3 contiguous columns",
-                })?;
-                if j >= n {
-                    // gauge columns: R (rigid modes) in the displacement rows
-                    if let Some(modes) = &modes {
-                        for (c, col) in cols.into_iter().enumerate() {
-                            let mode = &modes[3 * (j - n) + c];
-                            for (e, v) in mode.iter().enumerate() {
-                                col[3 * e..3 * e + 3].copy_from_slice(&v.to_array());
+            .map(|(k, mut range)| -> Result<Option<Partial>, BemError> {
+                let mut partial: Option<Partial> = None;
+                for l in 0..range.ncols() / 3 {
+                    control.check()?;
+                    let j = k * width + l;
+                    let cols = three_columns(range.rb_mut().subcols_mut(3 * l, 3)).ok_or(
+                        BemError::Internal {
+                            what: "a column block of K is not 3 contiguous columns",
+                        },
+                    )?;
+                    if j >= n {
+                        // gauge columns: R (rigid modes) in the displacement rows
+                        if let Some(modes) = &modes {
+                            for (c, col) in cols.into_iter().enumerate() {
+                                let mode = &modes[3 * (j - n) + c];
+                                for (e, v) in mode.iter().enumerate() {
+                                    col[3 * e..3 * e + 3].copy_from_slice(&v.to_array());
+                                }
                             }
                         }
+                        continue;
                     }
-                    return Ok(());
+                    let partial = partial.get_or_insert_with(|| Partial::new(n, dof, rhs_count));
+                    assemble_column(
+                        j,
+                        cols,
+                        &quads,
+                        centroids,
+                        &consts,
+                        &qp,
+                        prescribed[j],
+                        loads.of(j),
+                        mesh,
+                        material,
+                        partial,
+                        dof,
+                        modes.as_ref(),
+                    )?;
+                    let d = done.fetch_add(1, Ordering::Relaxed) + 1;
+                    if d.is_multiple_of(step) || d == n {
+                        control.report(Stage::Assembly, d, n);
+                    }
                 }
-                let slot = rayon::current_thread_index().unwrap_or(0) % threads;
-                let mut guard = partials[slot].lock().unwrap_or_else(|e| e.into_inner());
-                let partial = &mut *guard;
-                assemble_column(
-                    j,
-                    cols,
-                    &quads,
-                    centroids,
-                    &consts,
-                    &qp,
-                    prescribed[j],
-                    loads.of(j),
-                    mesh,
-                    material,
-                    partial,
-                    dof,
-                    modes.as_ref(),
-                )?;
-                let d = done.fetch_add(1, Ordering::Relaxed) + 1;
-                if d.is_multiple_of(step) || d == n {
-                    control.report(Stage::Assembly, d, n);
-                }
-                Ok(())
-            })?;
+                Ok(partial)
+            })
+            .collect::<Result<_, _>>()?;
 
-        // reduce the per-thread partials
+        // reduce the partials in range order
         let mut total = Partial::new(n, dof, rhs_count);
-        for p in partials {
-            let p = p.into_inner().unwrap_or_else(|e| e.into_inner());
+        for p in partials.into_iter().flatten() {
             for (t, s) in total.row_sums.iter_mut().zip(&p.row_sums) {
                 for a in 0..3 {
                     for b in 0..3 {

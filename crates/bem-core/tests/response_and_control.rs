@@ -343,3 +343,49 @@ fn factorisation_reports_panels_and_can_be_cancelled() {
         BemError::Cancelled
     );
 }
+
+/// Regression (CI, 2026-11-22): the H row sums were accumulated per worker thread, so which
+/// columns a thread stole decided the summation order and two runs differed in the last bits
+/// (a recomputed cache did not equal the first computation). K and the right-hand sides must be
+/// bit-for-bit the same whatever the thread count.
+#[test]
+fn assembly_is_bit_identical_for_any_thread_count() {
+    let mesh = shapes::hollow_sphere(1.0, 1.3, 2).expect("valid");
+    let m = Material::new(0.45, 1.0).expect("material");
+    let n = mesh.element_count();
+    let prescribed: Vec<bool> = (0..n).map(|e| e % 3 == 0).collect();
+    let mut loads = Loads::new(n, 2);
+    for e in (0..n).filter(|e| e % 3 == 0) {
+        let c = mesh.centroid(e);
+        loads.set(e, 0, 0.01 * c).expect("load");
+        loads
+            .set(e, 1, DVec3::new(0.0, 0.02 * c.z, 0.0))
+            .expect("load");
+    }
+    let assemble = |threads: usize| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .expect("pool")
+            .install(|| {
+                LinearSystem::assemble(
+                    &mesh,
+                    &m,
+                    &prescribed,
+                    &loads,
+                    &SolveParams::default(),
+                    &Control::default(),
+                )
+                .expect("assembly")
+            })
+    };
+    let one = assemble(1);
+    for threads in [2, 3, 7] {
+        let other = assemble(threads);
+        assert!(
+            one.matrix.as_slice() == other.matrix.as_slice(),
+            "K differs with {threads} threads"
+        );
+        assert!(one.rhs == other.rhs, "rhs differs with {threads} threads");
+    }
+}
