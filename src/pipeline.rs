@@ -27,6 +27,10 @@ pub struct PipelineParams {
     /// Muscles to use instead of the automatically placed ones (e.g. read from an edited
     /// muscle file; their element indices refer to the shell [`prep_rig`] builds).
     pub muscles: Option<Vec<face_prep::Muscle>>,
+    /// Feature boxes to use instead of the automatic ones (canonical frame, see
+    /// [`face_prep::FeatureBoxes`]): muscles and skull are placed from them. With `muscles`
+    /// set too, the boxes decide the skull and `muscles` the muscles.
+    pub boxes: Option<face_prep::FeatureBoxes>,
 }
 
 impl Default for PipelineParams {
@@ -37,6 +41,7 @@ impl Default for PipelineParams {
             large_face: LargeFaceParams::default(),
             quadrature: bem_core::QuadratureParams::default(),
             muscles: None,
+            boxes: None,
         }
     }
 }
@@ -172,7 +177,10 @@ pub fn prepare(mesh: &FaceMesh, params: &PipelineParams) -> Result<PreparedRig, 
     } else {
         (mesh.clone(), None)
     };
-    let mut rig = FaceRig::build(&simulated, &params.rig)?;
+    let mut rig = match params.boxes {
+        Some(boxes) => FaceRig::build_with_boxes(&simulated, &params.rig, boxes)?,
+        None => FaceRig::build(&simulated, &params.rig)?,
+    };
     if let Some(muscles) = &params.muscles {
         rig = rig.with_muscles(muscles.clone())?;
     }

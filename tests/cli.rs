@@ -183,7 +183,10 @@ fn bad_input_fails_with_one_line_naming_the_problem() {
     assert_one_line_error(&out, &["triangle.obj", "loop"]);
     // Garbage where a rig is expected.
     let junk = dir.path().join("junk.rig");
-    std::fs::write(&junk, b"FACEBEM\x1a\x01\x00\x00\x00 not really").unwrap();
+    let mut bytes = facebem::cache::MAGIC.to_vec();
+    bytes.extend_from_slice(&facebem::cache::FORMAT_VERSION.to_le_bytes());
+    bytes.extend_from_slice(b" not really");
+    std::fs::write(&junk, bytes).unwrap();
     let out = facebem(&["pose", s(&junk), "-o", s(&out_obj)]);
     assert_one_line_error(&out, &["junk.rig", "truncated"]);
     // Slider out of range, unknown muscle, unknown preset, malformed --set.

@@ -536,3 +536,48 @@ fn load_or_build_uses_the_cache_and_recovers_from_corruption() {
         "the corrupt cache was replaced"
     );
 }
+
+/// User-adjusted feature boxes are a pipeline parameter: the skull and the muscles both come
+/// from them (here the mouth box moved down by 8% of the face size, which also lowers the nose
+/// box and so changes the skull), on a plain face and on a simplified large face.
+#[test]
+fn feature_boxes_parameter_places_skull_and_muscles() {
+    for face in [support::FACES[0], support::FACES[3]] {
+        let mesh = face_prep::load_face(&support::asset(face)).unwrap();
+        let auto = facebem::prepare(&mesh, &PipelineParams::default()).unwrap();
+        let b = auto.rig.boxes;
+        let d = glam::DVec2::new(0.0, -0.08 * auto.rig.face_size);
+        let boxes =
+            face_prep::FeatureBoxes::derive(b.face, b.eye_l, b.eye_r, b.mouth.translated(d))
+                .unwrap();
+        let params = PipelineParams {
+            boxes: Some(boxes),
+            ..PipelineParams::default()
+        };
+        let edited = facebem::prepare(&mesh, &params).unwrap();
+        assert_eq!(edited.rig.boxes, boxes, "{face}");
+        let expected = auto.rig.rebuild_with_boxes(boxes).unwrap();
+        assert_eq!(edited.rig.skull, expected.skull, "{face}");
+        assert_eq!(edited.rig.muscles, expected.muscles, "{face}");
+        assert_ne!(edited.rig.skull, auto.rig.skull, "{face}: skull follows the boxes");
+        let changed = edited
+            .rig
+            .muscles
+            .iter()
+            .zip(&auto.rig.muscles)
+            .filter(|(a, b)| a.front_chain != b.front_chain)
+            .count();
+        assert!(changed >= 4, "{face}: only {changed} muscles moved");
+        // An inverted box is a typed error, not a panic.
+        let mut bad = boxes;
+        std::mem::swap(&mut bad.eye_l.min.x, &mut bad.eye_l.max.x);
+        let params = PipelineParams {
+            boxes: Some(bad),
+            ..PipelineParams::default()
+        };
+        assert!(matches!(
+            facebem::prepare(&mesh, &params),
+            Err(facebem::PipelineError::Prep(_))
+        ));
+    }
+}

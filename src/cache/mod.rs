@@ -54,8 +54,9 @@ pub enum CacheError {
         /// The cache file.
         path: PathBuf,
     },
-    /// The cache was computed with other parameters.
-    #[error("{path} was computed with other parameters")]
+    /// The cache was computed with other parameters, or by a build whose rig or physics code
+    /// differs ([`BUILD_ID`]).
+    #[error("{path} was computed with other parameters or by another facebem build")]
     OtherParams {
         /// The cache file.
         path: PathBuf,
@@ -85,10 +86,19 @@ pub fn mesh_hash(mesh: &FaceMesh) -> [u8; 32] {
     *h.finalize().as_bytes()
 }
 
-/// BLAKE3 hash of all pipeline parameters (of their postcard encoding).
+/// Identifies the code that computes a model: a hash of the pipeline's, face-prep's and
+/// bem-core's source files, made at build time. Two builds with the same id compute the same
+/// model from the same mesh and parameters.
+pub const BUILD_ID: &str = env!("FACEBEM_BUILD_ID");
+
+/// BLAKE3 hash of all pipeline parameters (of their postcard encoding) and of [`BUILD_ID`]:
+/// a cache is reused only by a build whose rig and physics code is the same.
 pub fn params_hash(params: &PipelineParams) -> [u8; 32] {
     let bytes = postcard::to_stdvec(params).unwrap_or_default();
-    *blake3::hash(&bytes).as_bytes()
+    let mut h = blake3::Hasher::new();
+    h.update(&bytes);
+    h.update(BUILD_ID.as_bytes());
+    *h.finalize().as_bytes()
 }
 
 /// Encodes a model as the bytes of a cache file.

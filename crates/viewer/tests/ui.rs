@@ -512,7 +512,7 @@ fn editing_muscles_saving_the_muscle_file_and_rebuilding_with_a_new_offset() {
 }
 
 #[test]
-fn edited_feature_boxes_re_place_the_muscles_and_invalid_boxes_are_refused() {
+fn edited_feature_boxes_re_place_muscles_and_skull_and_invalid_boxes_are_refused() {
     let cache = tempfile::tempdir().unwrap();
     let options = viewer::ViewerOptions {
         cache_dir: Some(cache.path().to_path_buf()),
@@ -612,12 +612,23 @@ fn edited_feature_boxes_re_place_the_muscles_and_invalid_boxes_are_refused() {
     let msg = harness.state().message().cloned().unwrap();
     assert!(!msg.is_error, "{}", msg.text);
     let rebuilt = harness.state().model().unwrap().clone();
-    let muscles = rebuilt
+    // The pipeline got the boxes: muscles and skull both come from them, exactly as face-prep
+    // places them in those boxes on the original rig's shell.
+    let boxes = rebuilt
         .params
-        .muscles
-        .as_ref()
-        .expect("muscles from the edited boxes");
-    assert_eq!(muscles, &rebuilt.rig.muscles);
+        .boxes
+        .expect("the edited boxes are a pipeline parameter");
+    assert_eq!(boxes.mouth, edited);
+    assert_eq!(rebuilt.rig.boxes, boxes);
+    assert_eq!(rebuilt.params.muscles, None);
+    let expected = model.rig.rebuild_with_boxes(boxes).unwrap();
+    assert_eq!(rebuilt.rig.muscles, expected.muscles);
+    assert_eq!(rebuilt.rig.skull, expected.skull);
+    assert_ne!(
+        rebuilt.rig.skull, model.rig.skull,
+        "the nose box (down to the mouth) and so the skull follow the mouth box"
+    );
+    let muscles = &rebuilt.rig.muscles;
     let moved = muscles
         .iter()
         .zip(&model.rig.muscles)

@@ -27,10 +27,10 @@ impl ViewerApp {
         self.rebuild_rig_with_boxes(ctx, None);
     }
 
-    /// Like [`ViewerApp::rebuild_rig`], with the muscles placed in user-edited feature boxes
-    /// (canonical frame). The pipeline has no box parameter yet, so the boxes re-place the
-    /// muscles (passed to it as a muscle override) while the skull keeps following the
-    /// automatic boxes.
+    /// Like [`ViewerApp::rebuild_rig`], with user-edited feature boxes (canonical frame): the
+    /// pipeline places the ten standard muscles and the skull in them (edited muscles are
+    /// replaced by the standard ones placed in the new boxes). The boxes stay in the parameters
+    /// for later rebuilds (offset, thickness).
     pub fn rebuild_rig_with_boxes(&mut self, ctx: &egui::Context, boxes: Option<FeatureBoxes>) {
         let Some(face) = &self.face else { return };
         let Some(source) = face.source.clone() else {
@@ -42,7 +42,11 @@ impl ViewerApp {
             old.job.control().cancel();
         }
         let dir = self.cache_dir();
-        let mut params = self.params.clone();
+        if let Some(boxes) = boxes {
+            self.params.boxes = Some(boxes);
+            self.params.muscles = None;
+        }
+        let params = self.params.clone();
         let control = Control::new();
         let worker_control = control.clone();
         let name = face.name.clone();
@@ -61,14 +65,6 @@ impl ViewerApp {
                 ctl.report(&format!("cache folder: {e}"), 0.0);
             }
             let (mesh, obj) = &*source;
-            if let Some(boxes) = boxes {
-                ctl.report("muscles in the edited boxes", 0.0);
-                let prepared = facebem::prepare(mesh, &params).map_err(|e| e.to_string())?;
-                let rig =
-                    face_prep::FaceRig::build_with_boxes(&prepared.simulated, &params.rig, boxes)
-                        .map_err(|e| format!("feature boxes: {e}"))?;
-                params.muscles = Some(rig.muscles);
-            }
             let cache_path = source::cache_file_for(&dir, mesh, &params);
             facebem::open::load_or_build(mesh, obj.clone(), &params, &cache_path, &control)
                 .map_err(|e| e.to_string())
