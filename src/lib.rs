@@ -17,6 +17,12 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+/// The BEM solver facebem is built on (re-exported so callers use the same version).
+pub use bem_core;
+/// Face import, shell, features, muscles and skull (re-exported so callers use the same
+/// version of the types in facebem's API, e.g. [`face_prep::FaceMesh`]).
+pub use face_prep;
+
 mod atomic_write;
 mod basis;
 pub mod cache;
@@ -36,4 +42,3 @@ pub use pipeline::{
     FaceModel, PipelineError, PipelineParams, PrecomputeReport, PreparedRig, SimplifiedFace,
     build_face_model, prep_rig, prepare,
 };
-pub use solve::element_to_vertex;

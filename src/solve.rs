@@ -83,28 +83,7 @@ pub(crate) fn solve_rig(
         .collect();
     let vertex = element
         .iter()
-        .map(|u| element_to_vertex(&rig.shell.vertices, &rig.shell.triangles, mesh.areas(), u))
-        .collect();
+        .map(|u| bem_core::element_to_vertex(&mesh, u))
+        .collect::<Result<_, _>>()?;
     Ok(Solved { element, vertex })
-}
-
-/// Vertex values from element values: area-weighted average of the elements around each vertex.
-pub fn element_to_vertex(
-    vertices: &[DVec3],
-    triangles: &[[u32; 3]],
-    areas: &[f64],
-    values: &[DVec3],
-) -> Vec<DVec3> {
-    let mut sum = vec![DVec3::ZERO; vertices.len()];
-    let mut weight = vec![0.0; vertices.len()];
-    for ((t, &a), &u) in triangles.iter().zip(areas).zip(values) {
-        for &v in t {
-            sum[v as usize] += a * u;
-            weight[v as usize] += a;
-        }
-    }
-    sum.into_iter()
-        .zip(weight)
-        .map(|(s, w)| if w > 0.0 { s / w } else { DVec3::ZERO })
-        .collect()
 }

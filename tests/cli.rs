@@ -118,6 +118,23 @@ fn pose_writes_the_basis_pose_in_the_input_layout() {
             .collect::<Vec<_>>()
     };
     assert_eq!(non_v(&text), non_v(&original));
+
+    // A face mesh instead of a rig: computed first, same pose (the computation is
+    // deterministic, so the file is byte-identical).
+    let from_face = dir.path().join("happy_from_face.obj");
+    let face = support::asset(support::FACES[0]);
+    let out = facebem(&[
+        "pose",
+        s(&face),
+        "--preset",
+        "happy",
+        "--set",
+        "zygomaticus_major_l=-0.8",
+        "-o",
+        s(&from_face),
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert_eq!(std::fs::read_to_string(&from_face).unwrap(), text);
 }
 
 #[test]
@@ -205,10 +222,20 @@ fn bad_input_fails_with_one_line_naming_the_problem() {
     assert_one_line_error(&out, &["unknown preset", "grumpy"]);
     let out = facebem(&["pose", s(rig), "--set", "frontalis_l", "-o", s(&out_obj)]);
     assert_one_line_error(&out, &["frontalis_l", "muscle_id=value"]);
+    // Shell offset outside (0, 1) of the face size.
+    let face = support::asset(support::FACES[0]);
+    let out = facebem(&[
+        "rig",
+        s(&face),
+        "-o",
+        s(&dir.path().join("o.rig")),
+        "--offset",
+        "2",
+    ]);
+    assert_one_line_error(&out, &["offset", "2"]);
     // Muscle file with an element that does not exist.
     let bad = dir.path().join("bad.muscles");
     std::fs::write(&bad, "[Name]\nFrontalis L\n[Size]\n1\n[Data]\n999999\n").unwrap();
-    let face = support::asset(support::FACES[0]);
     let out = facebem(&[
         "rig",
         s(&face),

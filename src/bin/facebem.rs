@@ -16,6 +16,7 @@ use std::time::Duration;
 
 use anyhow::{Context, Result, anyhow, bail};
 use clap::{Args, Parser, Subcommand};
+use face_prep::RigParams;
 use facebem::large_face::LargeFaceParams;
 use facebem::open::{Opened, open};
 use facebem::{Control, FaceModel, PipelineParams, build_face_model, cache, presets};
@@ -99,6 +100,12 @@ struct SolverArgs {
     /// Triangle count of the simplified copy.
     #[arg(long, default_value_t = LargeFaceParams::default().target_triangles)]
     target_triangles: usize,
+    /// Back-face offset of the shell, as a fraction of the face size.
+    #[arg(long, default_value_t = RigParams::default().offset)]
+    offset: f64,
+    /// Rim thickness of the shell, as a fraction of the face size.
+    #[arg(long, default_value_t = RigParams::default().thickness)]
+    thickness: f64,
 }
 
 fn main() -> ExitCode {
@@ -207,6 +214,11 @@ fn rig(face: &Path, output: &Path, muscles: Option<&Path>, solver: &SolverArgs) 
         Opened::Model(_) => bail!("{} is already a rig file; give a face mesh", face.display()),
     };
     let mut params = PipelineParams {
+        rig: RigParams {
+            offset: solver.offset,
+            thickness: solver.thickness,
+            ..RigParams::default()
+        },
         poisson: solver.poisson,
         large_face: LargeFaceParams {
             max_triangles: solver.max_triangles,
