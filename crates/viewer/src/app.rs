@@ -458,6 +458,7 @@ impl ViewerApp {
                     posed_geo.as_ref().unwrap_or(geo),
                     &self.overlays,
                     selected_element,
+                    self.params.muscles.as_deref(),
                     edited.as_ref(),
                 );
             }

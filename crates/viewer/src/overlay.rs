@@ -2,7 +2,7 @@
 //! elements, feature boxes and the selected element. Built from the rig (canonical frame) and
 //! carried to the user's frame with `input_from_canonical`.
 
-use face_prep::{Box2, ElementTag, FaceRig, FeatureBoxes};
+use face_prep::{Box2, ElementTag, FaceRig, FeatureBoxes, Muscle};
 use glam::{DAffine3, DVec3};
 
 use crate::renderer::LineVertex;
@@ -153,12 +153,14 @@ fn box_lines(out: &mut Vec<LineVertex>, geo: &RigGeometry, b: &Box2, z: f64, col
 }
 
 /// All overlay lines for `rig` with `options`; `selected` (a shell element) is outlined in yellow.
-/// `boxes` replaces the rig's feature boxes (while the user edits them).
+/// `muscles` replaces the rig's muscles (edited ones, not solved yet) and `boxes` its feature
+/// boxes (while the user edits them).
 pub fn overlay_lines(
     rig: &FaceRig,
     geo: &RigGeometry,
     options: &OverlayOptions,
     selected: Option<u32>,
+    muscles: Option<&[Muscle]>,
     boxes: Option<&FeatureBoxes>,
 ) -> Vec<LineVertex> {
     let mut out = Vec::new();
@@ -191,7 +193,7 @@ pub fn overlay_lines(
         }
     }
     if options.muscles {
-        for (i, m) in rig.muscles.iter().enumerate() {
+        for (i, m) in muscles.unwrap_or(&rig.muscles).iter().enumerate() {
             let color = muscle_color(m.kind.map_or(i, |k| k.index()));
             chain_lines(&mut out, rig, geo, &m.front_chain, color, 1.0, view_normal);
             if options.whole_shell {
@@ -228,8 +230,8 @@ pub fn overlay_lines(
 }
 
 /// Names of the muscles whose front or back chain contains shell element `e`.
-pub fn muscles_of_element(rig: &FaceRig, e: u32) -> Vec<String> {
-    rig.muscles
+pub fn muscles_of_element(muscles: &[Muscle], e: u32) -> Vec<String> {
+    muscles
         .iter()
         .filter(|m| m.front_chain.contains(&e) || m.back_chain.contains(&e))
         .map(|m| {
@@ -258,7 +260,7 @@ mod tests {
             boxes: false,
             whole_shell: false,
         };
-        assert!(overlay_lines(&rig, &geo, &none, None, None).is_empty());
+        assert!(overlay_lines(&rig, &geo, &none, None, None, None).is_empty());
         let muscles = overlay_lines(
             &rig,
             &geo,
@@ -266,6 +268,7 @@ mod tests {
                 muscles: true,
                 ..none
             },
+            None,
             None,
             None,
         );
@@ -277,6 +280,20 @@ mod tests {
             .map(|m| 2 * (m.front_chain.len() - 1 + 2))
             .sum();
         assert_eq!(muscles.len(), expected);
+        // Edited muscles (not solved yet) are drawn instead of the rig's: here only the first.
+        let edited = overlay_lines(
+            &rig,
+            &geo,
+            &OverlayOptions {
+                muscles: true,
+                ..none
+            },
+            None,
+            Some(&rig.muscles[..1]),
+            None,
+        );
+        assert_eq!(edited.len(), 2 * (rig.muscles[0].front_chain.len() - 1 + 2));
+        assert_eq!(edited[..], muscles[..edited.len()]);
         let boxes = overlay_lines(
             &rig,
             &geo,
@@ -284,6 +301,7 @@ mod tests {
                 boxes: true,
                 ..none
             },
+            None,
             None,
             None,
         );
@@ -297,10 +315,11 @@ mod tests {
             },
             None,
             None,
+            None,
         );
         assert_eq!(skull.len(), rig.skull.len() * 6);
-        let selected = overlay_lines(&rig, &geo, &none, Some(0), None);
+        let selected = overlay_lines(&rig, &geo, &none, Some(0), None, None);
         assert_eq!(selected.len(), 6);
-        assert!(overlay_lines(&rig, &geo, &none, Some(u32::MAX), None).is_empty());
+        assert!(overlay_lines(&rig, &geo, &none, Some(u32::MAX), None, None).is_empty());
     }
 }

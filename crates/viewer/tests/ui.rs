@@ -440,10 +440,21 @@ fn editing_muscles_saving_the_muscle_file_and_rebuilding_with_a_new_offset() {
     assert_eq!(sel.muscles.len(), in_muscles);
 
     // Add it to the target muscle (the first one), then remove it from every muscle.
+    let lines_before = harness.state().overlay_line_vertices().to_vec();
     harness.get_by_label("Add element to muscle").click();
     harness.run();
     let pending = harness.state().pending_muscles().unwrap().to_vec();
     assert!(pending[0].front_chain.contains(&element));
+    // The selection info and the muscle overlay show the edit before any rebuild.
+    let first = model.rig.muscles[0].kind.unwrap().display_name();
+    let sel = harness.state().selection().cloned().unwrap();
+    assert!(sel.muscles.iter().any(|m| m == first), "{:?}", sel.muscles);
+    if !model.rig.muscles[0].front_chain.contains(&element) {
+        assert_ne!(
+            harness.state().overlay_line_vertices(),
+            lines_before.as_slice()
+        );
+    }
     assert_eq!(
         pending[0].front_chain.len(),
         model.rig.muscles[0].front_chain.len()
@@ -457,6 +468,7 @@ fn editing_muscles_saving_the_muscle_file_and_rebuilding_with_a_new_offset() {
             .iter()
             .all(|m| !m.front_chain.contains(&element) && !m.back_chain.contains(&element))
     );
+    assert!(harness.state().selection().unwrap().muscles.is_empty());
 
     // The muscle file holds the rig's muscles.
     harness.get_by_label("Save muscle file").click();

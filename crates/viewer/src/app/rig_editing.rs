@@ -104,7 +104,13 @@ impl ViewerApp {
             .iter()
             .map(|m| format!("{} {}", muscle_label(m), m.front_chain.len()))
             .collect();
+        if let Some(sel) = &mut self.selection
+            && let Some(e) = sel.element
+        {
+            sel.muscles = crate::overlay::muscles_of_element(&muscles, e);
+        }
         self.params.muscles = Some(muscles);
+        self.refresh_overlays();
         self.info(format!(
             "Muscles edited (front elements: {}); press Rebuild rig to solve with them",
             summary.join(", ")
@@ -164,6 +170,7 @@ impl ViewerApp {
         match face_prep::muscle_file::load(&path, model.rig.shell.triangles.len()) {
             Ok(muscles) => {
                 self.params.muscles = Some(muscles);
+                self.refresh_overlays();
                 self.info(format!("Loaded {}; rebuilding the rig", path.display()));
                 self.rebuild_rig(ctx);
             }

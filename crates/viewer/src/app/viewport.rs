@@ -126,7 +126,9 @@ impl ViewerApp {
                 _ => None,
             };
             let muscles = match (&face.model, element) {
-                (Some(m), Some(e)) => muscles_of_element(&m.rig, e),
+                (Some(m), Some(e)) => {
+                    muscles_of_element(self.params.muscles.as_deref().unwrap_or(&m.rig.muscles), e)
+                }
                 _ => Vec::new(),
             };
             Selection {
