@@ -393,12 +393,15 @@ macro_rules! face_tests {
 }
 
 face_tests!(mediapipe, 0);
-// The ICT inputs' lips interpenetrate at the mouth corners (see `shell_does_not_intersect_itself`):
-// those two checks fail there until the asset or face-prep resolves it; run them with
+// The ICT inputs' lips interpenetrate at the mouth corners and press together along the mouth
+// (see `shell_does_not_intersect_itself`). face-prep repairs that in the shell of the full
+// meshes (0 intersecting pairs), but the pipeline simulates their 1500-triangle simplified
+// copies, whose mouth corners fold back so tightly that 10 (dec2500) / 16 (13k) front/back pairs
+// remain, and the zygomaticus responses there still blow up; run these two checks with
 // `cargo test --release -p facebem --test end_to_end -- --ignored`.
-face_tests!(ict_2500, 1, #[ignore = "ICT input lips interpenetrate at the mouth corners"]);
+face_tests!(ict_2500, 1, #[ignore = "ICT simplified mouth corners: shell still intersects, responses blow up"]);
 face_tests!(lee_perry_smith, 2);
-face_tests!(ict_13k, 3, #[ignore = "ICT input lips interpenetrate at the mouth corners"]);
+face_tests!(ict_13k, 3, #[ignore = "ICT simplified mouth corners: shell still intersects, responses blow up"]);
 
 /// On the symmetric MediaPipe face, each left muscle's response is the mirror image (x → −x)
 /// of its right partner's, vertex by mirrored vertex.
@@ -559,7 +562,10 @@ fn feature_boxes_parameter_places_skull_and_muscles() {
         let expected = auto.rig.rebuild_with_boxes(boxes).unwrap();
         assert_eq!(edited.rig.skull, expected.skull, "{face}");
         assert_eq!(edited.rig.muscles, expected.muscles, "{face}");
-        assert_ne!(edited.rig.skull, auto.rig.skull, "{face}: skull follows the boxes");
+        assert_ne!(
+            edited.rig.skull, auto.rig.skull,
+            "{face}: skull follows the boxes"
+        );
         let changed = edited
             .rig
             .muscles

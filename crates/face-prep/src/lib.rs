@@ -34,4 +34,4 @@ pub use muscle_kind::{MuscleKind, Side};
 pub use muscles::Muscle;
 pub use orient::FaceLoops;
 pub use rig::{FaceRig, RigParams};
-pub use shell::{ElementTag, Shell};
+pub use shell::{ElementTag, FrontRepair, Shell};

@@ -2,6 +2,15 @@
 //!
 //! Construction, all lengths absolute ([`ShellDims`], derived from [`crate::RigParams`]):
 //!
+//! 0. Front repair ([`repair_front_intersections`]): the shell's copy of the front surface must
+//!    not intersect itself, nor press two of its parts together (a crack, on which the BEM
+//!    system is near-singular). Where the input does (the ICT faces' lips roll inward, cross
+//!    each other near the mouth corners and press together along the mouth), the vertices
+//!    involved are pushed apart by small local moves until no triangle pair intersects and
+//!    facing parts keep a clearance of [`FRONT_CLEARANCE`] × the local edge length. The input
+//!    mesh itself is never changed, front vertex `i` stays input vertex `i`, and an input
+//!    without such defects is used bit for bit; [`Shell::front_repair`] records how many
+//!    vertices moved and how far.
 //! 1. Offset direction per vertex: the area-weighted vertex normal, or, where an incident
 //!    triangle disagrees with it (folds such as mouth corners), the candidate direction with the
 //!    best worst-case agreement ([`offset_directions`]).
@@ -17,12 +26,15 @@
 //!    at a displaced mid-point. The rim joins each outer-contour edge to its back copy.
 //! 6. Local repair: back/rim elements found intersecting anything (BVH triangle–triangle test)
 //!    get their moved vertices redirected, then their offset halved, for a few rounds; vertices
-//!    still intersecting afterwards sit where the input itself overlaps and keep their offset.
+//!    still intersecting afterwards get their full offset back and are then moved, one at a
+//!    time, to whichever of a set of nearby candidate positions leaves the fewest intersections
+//!    (tight folds where the lips meet at a mouth corner).
 //!
-//! Vertex layout: face vertices `0..n`, then back copies of every vertex not on an eye or mouth
-//! contour (outer contour copies included) in face order, then chord mid-points. Element
-//! layout: front triangles `0..f`, back triangles (in face-triangle order, split ones
-//! contiguous), rim triangles (two per outer-contour edge, in loop order).
+//! Vertex layout: face vertices `0..n` (the input's, moved only by step 0), then back copies of
+//! every vertex not on an eye or mouth contour (outer contour copies included) in face order,
+//! then chord mid-points. Element layout: front triangles `0..f`, back triangles (in
+//! face-triangle order, split ones contiguous), rim triangles (two per outer-contour edge, in
+//! loop order).
 
 use crate::bvh::{TriangleBvh, segment_crosses_triangle};
 use crate::orient::FaceLoops;
@@ -44,8 +56,8 @@ pub enum ElementTag {
 
 /// The closed, edge-manifold, outward-oriented shell, canonical frame.
 ///
-/// Contract: vertices `0..n_face_vertices` are exactly the face's vertices (canonical frame, same
-/// order) and triangles `0..n_face_triangles` are the face's triangles (front element `i` = face
+/// Contract: vertices `0..n_face_vertices` are the face's vertices (canonical frame, same order;
+/// exactly, unless the front repair moved some of them, see [`Shell::front_repair`]) and triangles `0..n_face_triangles` are the face's triangles (front element `i` = face
 /// triangle `i`). Back and rim elements follow. Eye and mouth contours are knife edges shared
 /// by front and back; the outer contour is joined to its copy by the rim, so the surface has
 /// genus 3 (V − E + F = −4).
@@ -61,6 +73,26 @@ pub struct Shell {
     /// mirrored front triangle for back elements, the front triangle owning the contour edge for
     /// rim elements.
     pub source_triangle: Vec<u32>,
+    /// What the repair of the input's own self-intersections did to the front vertices
+    /// (nothing, for an input that does not intersect itself).
+    pub front_repair: FrontRepair,
+}
+
+/// Outcome of [`repair_front_intersections`]: how far the shell's front surface departs from
+/// the input face.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct FrontRepair {
+    /// Intersecting front/front triangle pairs of the input (see [`intersecting_pairs`]).
+    pub input_intersections: usize,
+    /// Intersecting front/front pairs left after the repair (0 unless the rounds ran out).
+    pub remaining_intersections: usize,
+    /// Repair rounds run.
+    pub rounds: usize,
+    /// Front vertices that were moved.
+    pub moved_vertices: usize,
+    /// Largest distance between a shell front vertex and its input position (face units,
+    /// canonical frame); 0 when nothing was moved.
+    pub max_displacement: f64,
 }
 
 /// Absolute shell dimensions, in the face's units.
@@ -81,6 +113,9 @@ pub struct ShellDims {
     /// Rounds of local repair: back/rim vertices of intersecting elements get half their
     /// offset per round.
     pub repair_rounds: usize,
+    /// Rounds of repair of the input front surface's own self-intersections
+    /// ([`repair_front_intersections`]); 0 keeps the front exactly as the input.
+    pub front_repair_rounds: usize,
 }
 
 /// Area-weighted vertex normals of a triangle mesh (+z where undefined).
@@ -99,13 +134,18 @@ pub fn vertex_normals(vertices: &[DVec3], triangles: &[[u32; 3]]) -> Vec<DVec3> 
 }
 
 impl Shell {
-    /// Builds the shell from the face (canonical frame) and its classified loops.
+    /// Builds the shell from the face (canonical frame) and its classified loops: front repair,
+    /// back face, rim and local repair (see the module docs).
     pub fn build(
-        vertices: &[DVec3],
+        input: &[DVec3],
         triangles: &[[u32; 3]],
         loops: &FaceLoops,
         dims: ShellDims,
     ) -> Shell {
+        let mut front = input.to_vec();
+        let front_repair =
+            repair_front_intersections(&mut front, triangles, dims.front_repair_rounds);
+        let vertices: &[DVec3] = &front;
         let n = vertices.len();
         let normals = offset_directions(vertices, triangles);
         let front_tris: Vec<[DVec3; 3]> = triangles
@@ -298,6 +338,7 @@ impl Shell {
             triangles: out_t,
             tags,
             source_triangle: source,
+            front_repair,
         };
         shell.repair_back_intersections(n, &anchor, &robust_dir, dims.repair_rounds);
         shell
@@ -362,9 +403,151 @@ impl Shell {
             .flat_map(|e| self.triangles[e as usize])
             .filter(|&v| v as usize >= n_front)
             .collect();
-        for v in stuck {
-            let v = v as usize;
+        let mut stuck: Vec<usize> = stuck.into_iter().map(|v| v as usize).collect();
+        stuck.sort_unstable();
+        for &v in &stuck {
             self.vertices[v] = anchor[v] + disp[v];
+        }
+        self.relocate_stuck(&stuck, anchor, &disp, robust_dir);
+    }
+
+    /// Last resort for back vertices still in an intersection after the repair rounds (tight
+    /// folds such as the corners of pressed-together lips, where no single direction is behind
+    /// every incident front triangle): a few sweeps of a local search that moves each such
+    /// vertex to the candidate position with the fewest intersections of its incident elements.
+    /// Candidates: the current position; along its repair direction, its robust direction and
+    /// the mean of its neighbours' offsets at 1, 1/2, …, 1/1024 of its offset; along the 26
+    /// axis and diagonal directions at 1, 1/2, …, 1/32 of it; the mean of its neighbours.
+    /// Positions that would make an incident element a sliver are skipped. Ties keep the
+    /// earlier candidate (the current one first), so a vertex only moves when that removes
+    /// intersections; a shell without intersections is never touched.
+    fn relocate_stuck(
+        &mut self,
+        stuck: &[usize],
+        anchor: &[DVec3],
+        disp: &[DVec3],
+        robust_dir: &[DVec3],
+    ) {
+        if stuck.is_empty() {
+            return;
+        }
+        let nv = self.vertices.len();
+        let mut incident: Vec<Vec<usize>> = vec![Vec::new(); nv];
+        for (e, t) in self.triangles.iter().enumerate() {
+            for &v in t {
+                incident[v as usize].push(e);
+            }
+        }
+        let adjacency = vertex_adjacency(nv, &self.triangles);
+        for _ in 0..12 {
+            let mut changed = false;
+            for &v in stuck {
+                let elems = &incident[v];
+                let tris: Vec<[DVec3; 3]> =
+                    (0..self.triangles.len()).map(|e| self.corners(e)).collect();
+                let bvh = TriangleBvh::new(&tris);
+                let cost = |shell: &Shell, p: DVec3| -> usize {
+                    let corners = |e: usize| {
+                        shell.triangles[e].map(|i| {
+                            if i as usize == v {
+                                p
+                            } else {
+                                shell.vertices[i as usize]
+                            }
+                        })
+                    };
+                    let mut hits = 0;
+                    for (k, &e) in elems.iter().enumerate() {
+                        let a = corners(e);
+                        let longest = (0..3)
+                            .map(|i| a[i].distance_squared(a[(i + 1) % 3]))
+                            .fold(0.0, f64::max);
+                        if (a[1] - a[0]).cross(a[2] - a[0]).length() <= 1e-4 * longest {
+                            return usize::MAX;
+                        }
+                        let lo = a[0].min(a[1]).min(a[2]);
+                        let hi = a[0].max(a[1]).max(a[2]);
+                        for f in bvh.overlapping(lo, hi) {
+                            let f = f as usize;
+                            if elems.contains(&f) {
+                                continue;
+                            }
+                            if triangles_intersect(
+                                shell.triangles[e],
+                                &a,
+                                shell.triangles[f],
+                                &tris[f],
+                            ) {
+                                hits += 1;
+                            }
+                        }
+                        for &f in &elems[k + 1..] {
+                            if triangles_intersect(
+                                shell.triangles[e],
+                                &a,
+                                shell.triangles[f],
+                                &corners(f),
+                            ) {
+                                hits += 1;
+                            }
+                        }
+                    }
+                    hits
+                };
+                let len = disp[v].length();
+                let neighbours: Vec<usize> = adjacency[v].iter().map(|&u| u as usize).collect();
+                let mean_offset = neighbours
+                    .iter()
+                    .map(|&u| self.vertices[u] - anchor[u])
+                    .sum::<DVec3>();
+                let mut candidates = vec![self.vertices[v]];
+                for dir in [
+                    disp[v].try_normalize(),
+                    Some(-robust_dir[v]),
+                    mean_offset.try_normalize(),
+                ]
+                .into_iter()
+                .flatten()
+                {
+                    for k in 0..11 {
+                        candidates.push(anchor[v] + dir * len / f64::from(1u32 << k));
+                    }
+                }
+                for x in [-1.0, 0.0, 1.0] {
+                    for y in [-1.0, 0.0, 1.0] {
+                        for z in [-1.0, 0.0, 1.0] {
+                            if let Some(dir) = DVec3::new(x, y, z).try_normalize() {
+                                for k in 0..6 {
+                                    candidates.push(anchor[v] + dir * len / f64::from(1u32 << k));
+                                }
+                            }
+                        }
+                    }
+                }
+                if !neighbours.is_empty() {
+                    candidates.push(
+                        neighbours.iter().map(|&u| self.vertices[u]).sum::<DVec3>()
+                            / neighbours.len() as f64,
+                    );
+                }
+                let mut best = (cost(self, candidates[0]), 0);
+                if best.0 == 0 {
+                    continue;
+                }
+                for (i, &c) in candidates.iter().enumerate().skip(1) {
+                    let h = cost(self, c);
+                    if h < best.0 {
+                        best = (h, i);
+                    }
+                }
+                if best.1 != 0 {
+                    self.vertices[v] = candidates[best.1];
+                    changed = true;
+                }
+            }
+            if !changed {
+                break;
+            }
         }
     }
 
@@ -407,51 +590,282 @@ impl Shell {
             .sum()
     }
 
-    /// Pairs of elements that intersect each other (BVH-accelerated). Pairs sharing an edge
-    /// are not tested; pairs sharing one vertex are tested with their edges opposite to it.
-    /// Empty for a valid shell.
+    /// Pairs of elements that intersect each other (BVH-accelerated, see
+    /// [`intersecting_pairs`]). Empty for a valid shell.
     pub fn self_intersections(&self) -> Vec<[u32; 2]> {
-        let tris: Vec<[DVec3; 3]> = (0..self.triangles.len()).map(|e| self.corners(e)).collect();
-        let bvh = TriangleBvh::new(&tris);
-        let mut pairs: Vec<[u32; 2]> = (0..tris.len())
-            .into_par_iter()
-            .flat_map_iter(|i| {
-                let a = &tris[i];
-                let lo = a[0].min(a[1]).min(a[2]);
-                let hi = a[0].max(a[1]).max(a[2]);
-                let ta = self.triangles[i];
-                let mut found = Vec::new();
-                for j in bvh.overlapping(lo, hi) {
-                    let j = j as usize;
-                    if j <= i {
+        intersecting_pairs(&self.vertices, &self.triangles)
+    }
+}
+
+/// Pairs `[i, j]`, `i < j`, sorted, of triangles of an indexed mesh that intersect each other
+/// (BVH-accelerated). Pairs sharing an edge are not tested; pairs sharing one vertex are tested
+/// with their edges opposite to it; touching within a relative tolerance of 1e-9 does not count
+/// (see [`segment_crosses_triangle`]).
+pub fn intersecting_pairs(vertices: &[DVec3], triangles: &[[u32; 3]]) -> Vec<[u32; 2]> {
+    let tris: Vec<[DVec3; 3]> = triangles
+        .iter()
+        .map(|t| t.map(|i| vertices[i as usize]))
+        .collect();
+    let bvh = TriangleBvh::new(&tris);
+    let mut pairs: Vec<[u32; 2]> = (0..tris.len())
+        .into_par_iter()
+        .flat_map_iter(|i| {
+            let a = &tris[i];
+            let lo = a[0].min(a[1]).min(a[2]);
+            let hi = a[0].max(a[1]).max(a[2]);
+            let ta = triangles[i];
+            let mut found = Vec::new();
+            for j in bvh.overlapping(lo, hi) {
+                let j = j as usize;
+                if j <= i {
+                    continue;
+                }
+                if triangles_intersect(ta, a, triangles[j], &tris[j]) {
+                    found.push([i as u32, j as u32]);
+                }
+            }
+            found
+        })
+        .collect();
+    pairs.sort_unstable();
+    pairs
+}
+
+/// Whether two triangles of one indexed mesh (indices `ta`, `tb`, corners `a`, `b`) intersect:
+/// never when they share an edge; with their edges opposite to a shared vertex; else any edge
+/// of one crossing the other.
+fn triangles_intersect(ta: [u32; 3], a: &[DVec3; 3], tb: [u32; 3], b: &[DVec3; 3]) -> bool {
+    let mut shared = ta.iter().copied().filter(|v| tb.contains(v));
+    match (shared.next(), shared.next()) {
+        (None, _) => (0..3).any(|k| {
+            segment_crosses_triangle(a[k], a[(k + 1) % 3], b)
+                || segment_crosses_triangle(b[k], b[(k + 1) % 3], a)
+        }),
+        (Some(v), None) => {
+            let ka = ta.iter().position(|&u| u == v).unwrap_or(0);
+            let kb = tb.iter().position(|&u| u == v).unwrap_or(0);
+            segment_crosses_triangle(a[(ka + 1) % 3], a[(ka + 2) % 3], b)
+                || segment_crosses_triangle(b[(kb + 1) % 3], b[(kb + 2) % 3], a)
+        }
+        _ => false,
+    }
+}
+
+/// Separation left between two repaired front triangles, as a fraction of the longest edge of
+/// the triangle a vertex is pushed out of.
+pub const FRONT_REPAIR_GAP: f64 = 0.02;
+
+/// Smallest clearance kept across an exterior gap of the front surface (two parts of it facing
+/// each other, e.g. upper and lower lip), as a fraction of the mean edge length at the vertex.
+/// The bundled MediaPipe and Lee Perry-Smith faces have at least 0.39 (at their mouth
+/// corners); the ICT faces' pressed-together lips 0.01–0.1, a crack that makes the BEM system
+/// near-singular.
+pub const FRONT_CLEARANCE: f64 = 0.3;
+
+/// No front vertex is moved further than this many of its mean edge lengths from the input.
+pub const MAX_MOVE_EDGES: f64 = 1.0;
+
+/// Two normals count as facing each other below this cosine.
+pub const FACING_COSINE: f64 = -0.3;
+
+/// Opens the self-intersections and cracks of a front surface (e.g. lips that roll inward and
+/// cross or press against each other) by small local vertex moves, in place.
+///
+/// Each round:
+/// 1. Intersecting triangle pairs ([`intersecting_pairs`]) each straddle the other's plane;
+///    every vertex of one that lies behind the other (against its outward normal, i.e. inside
+///    the other sheet's tissue) is pushed along the other triangle's normal by half its depth
+///    plus half a gap of [`FRONT_REPAIR_GAP`] × that triangle's longest edge.
+/// 2. A vertex that faces a triangle (normals opposite within [`FACING_COSINE`], each in front
+///    of the other) not touching its one-ring at less than [`FRONT_CLEARANCE`] × its mean edge
+///    length is pushed along that triangle's normal by half the shortfall.
+///
+/// A vertex pushed by several triangles takes the largest push; both sides move, so they meet
+/// half-way; no vertex ends up further than [`MAX_MOVE_EDGES`] of its mean edge lengths from
+/// where it started. Rounds repeat until nothing is left to do or `rounds` ran out; the result
+/// is the latest state with the fewest intersecting pairs. Vertices of no offending pair never
+/// move, and a surface without any is left bit-for-bit unchanged.
+pub fn repair_front_intersections(
+    vertices: &mut [DVec3],
+    triangles: &[[u32; 3]],
+    rounds: usize,
+) -> FrontRepair {
+    let original = vertices.to_vec();
+    let n = vertices.len();
+    let adjacency = vertex_adjacency(n, triangles);
+    let mean_edge: Vec<f64> = (0..n)
+        .map(|v| {
+            let a = &adjacency[v];
+            a.iter()
+                .map(|&u| vertices[u as usize].distance(vertices[v]))
+                .sum::<f64>()
+                / a.len().max(1) as f64
+        })
+        .collect();
+    let mut pairs = intersecting_pairs(vertices, triangles);
+    let input_intersections = pairs.len();
+    // The state with the fewest intersecting pairs so far (the latest among equals).
+    let mut best = (pairs.clone(), vertices.to_vec());
+    let mut done = 0;
+    while done < rounds {
+        let mut push: Vec<Option<DVec3>> = vec![None; n];
+        let mut propose = |v: u32, d: DVec3| {
+            let slot = &mut push[v as usize];
+            if slot.is_none_or(|p| p.length_squared() < d.length_squared()) {
+                *slot = Some(d);
+            }
+        };
+        for &[a, b] in &pairs {
+            for (x, y) in [(a, b), (b, a)] {
+                let tx = triangles[x as usize];
+                let ty = triangles[y as usize];
+                let py = ty.map(|i| vertices[i as usize]);
+                let Some(normal) = (py[1] - py[0]).cross(py[2] - py[0]).try_normalize() else {
+                    continue;
+                };
+                let longest = (0..3)
+                    .map(|k| py[k].distance(py[(k + 1) % 3]))
+                    .fold(0.0, f64::max);
+                let gap = FRONT_REPAIR_GAP * longest;
+                for &v in &tx {
+                    if ty.contains(&v) {
                         continue;
                     }
-                    let tb = self.triangles[j];
-                    let shared: Vec<u32> = ta.iter().copied().filter(|v| tb.contains(v)).collect();
-                    let b = &tris[j];
-                    let hit = match shared.len() {
-                        0 => (0..3).any(|k| {
-                            segment_crosses_triangle(a[k], a[(k + 1) % 3], b)
-                                || segment_crosses_triangle(b[k], b[(k + 1) % 3], a)
-                        }),
-                        1 => {
-                            let ka = ta.iter().position(|&v| v == shared[0]).unwrap_or(0);
-                            let kb = tb.iter().position(|&v| v == shared[0]).unwrap_or(0);
-                            segment_crosses_triangle(a[(ka + 1) % 3], a[(ka + 2) % 3], b)
-                                || segment_crosses_triangle(b[(kb + 1) % 3], b[(kb + 2) % 3], a)
-                        }
-                        _ => false,
-                    };
-                    if hit {
-                        found.push([i as u32, j as u32]);
+                    let depth = -normal.dot(vertices[v as usize] - py[0]);
+                    if depth > 0.0 {
+                        propose(v, normal * 0.5 * (depth + gap));
                     }
                 }
-                found
-            })
-            .collect();
-        pairs.sort_unstable();
-        pairs
+            }
+        }
+        for (v, d) in clearance_pushes(vertices, triangles, &adjacency, &mean_edge) {
+            propose(v, d);
+        }
+        if push.iter().all(Option::is_none) {
+            break;
+        }
+        done += 1;
+        for (v, d) in push.iter().enumerate() {
+            if let Some(d) = d {
+                // Never further than MAX_MOVE_EDGES mean edge lengths from the input.
+                let limit = MAX_MOVE_EDGES * mean_edge[v];
+                let total = vertices[v] + *d - original[v];
+                vertices[v] = original[v] + total.clamp_length_max(limit);
+            }
+        }
+        pairs = intersecting_pairs(vertices, triangles);
+        if pairs.len() <= best.0.len() {
+            best = (pairs.clone(), vertices.to_vec());
+        }
     }
+    if pairs.len() > best.0.len() {
+        vertices.copy_from_slice(&best.1);
+        pairs = best.0;
+    }
+    let moves: Vec<f64> = vertices
+        .iter()
+        .zip(&original)
+        .map(|(p, q)| p.distance(*q))
+        .collect();
+    FrontRepair {
+        input_intersections,
+        remaining_intersections: pairs.len(),
+        rounds: done,
+        moved_vertices: moves.iter().filter(|&&m| m > 0.0).count(),
+        max_displacement: moves.iter().copied().fold(0.0, f64::max),
+    }
+}
+
+/// Step 2 of [`repair_front_intersections`]: pushes of the vertices closer than
+/// [`FRONT_CLEARANCE`] × their mean edge length to a facing triangle.
+fn clearance_pushes(
+    vertices: &[DVec3],
+    triangles: &[[u32; 3]],
+    adjacency: &[Vec<u32>],
+    mean_edge: &[f64],
+) -> Vec<(u32, DVec3)> {
+    let tris: Vec<[DVec3; 3]> = triangles
+        .iter()
+        .map(|t| t.map(|i| vertices[i as usize]))
+        .collect();
+    let bvh = TriangleBvh::new(&tris);
+    let normals = vertex_normals(vertices, triangles);
+    (0..vertices.len())
+        .into_par_iter()
+        .filter_map(|v| {
+            let p = vertices[v];
+            let want = FRONT_CLEARANCE * mean_edge[v];
+            if adjacency[v].is_empty() || want <= 0.0 {
+                return None;
+            }
+            let near = |t: &[u32; 3]| {
+                t.iter()
+                    .any(|&u| u as usize == v || adjacency[v].binary_search(&u).is_ok())
+            };
+            let mut best: Option<DVec3> = None;
+            for t in bvh.overlapping(p - DVec3::splat(want), p + DVec3::splat(want)) {
+                let t = t as usize;
+                if near(&triangles[t]) {
+                    continue;
+                }
+                let c = &tris[t];
+                let Some(nt) = (c[1] - c[0]).cross(c[2] - c[0]).try_normalize() else {
+                    continue;
+                };
+                if nt.dot(normals[v]) > FACING_COSINE {
+                    continue;
+                }
+                let q = closest_point_on_triangle(p, c);
+                let gap = p.distance(q);
+                // Facing across an exterior gap: each in front of the other.
+                if gap >= want || nt.dot(p - q) < 0.0 || normals[v].dot(q - p) < 0.0 {
+                    continue;
+                }
+                let d = nt * 0.5 * (1.05 * want - gap);
+                if best.is_none_or(|b| b.length_squared() < d.length_squared()) {
+                    best = Some(d);
+                }
+            }
+            best.map(|d| (v as u32, d))
+        })
+        .collect()
+}
+
+/// Closest point of triangle `t` to `p` (Ericson, Real-Time Collision Detection, 5.1.5).
+pub fn closest_point_on_triangle(p: DVec3, t: &[DVec3; 3]) -> DVec3 {
+    let (a, b, c) = (t[0], t[1], t[2]);
+    let (ab, ac, ap) = (b - a, c - a, p - a);
+    let (d1, d2) = (ab.dot(ap), ac.dot(ap));
+    if d1 <= 0.0 && d2 <= 0.0 {
+        return a;
+    }
+    let bp = p - b;
+    let (d3, d4) = (ab.dot(bp), ac.dot(bp));
+    if d3 >= 0.0 && d4 <= d3 {
+        return b;
+    }
+    let vc = d1 * d4 - d3 * d2;
+    if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
+        return a + ab * (d1 / (d1 - d3));
+    }
+    let cp = p - c;
+    let (d5, d6) = (ab.dot(cp), ac.dot(cp));
+    if d6 >= 0.0 && d5 <= d6 {
+        return c;
+    }
+    let vb = d5 * d2 - d1 * d6;
+    if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
+        return a + ac * (d2 / (d2 - d6));
+    }
+    let va = d3 * d6 - d5 * d4;
+    if va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0 {
+        return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+    }
+    let denom = 1.0 / (va + vb + vc);
+    if !denom.is_finite() {
+        return a;
+    }
+    a + ab * (vb * denom) + ac * (vc * denom)
 }
 
 /// Offset directions: per vertex, the unit outward direction that is most consistently
