@@ -570,8 +570,18 @@ impl ViewerApp {
                                 .unwrap_or_default()
                         ),
                     };
+                    let crossings = model.report.shell_self_intersections;
                     self.set_model(name, model);
-                    self.info(text);
+                    if crossings > 0 {
+                        // Shown as an error: responses near the crossings are not trustworthy.
+                        self.error(format!(
+                            "{text}. Warning: {crossings} pairs of shell elements intersect \
+                             (does the face cross itself, e.g. at the lips?); responses near \
+                             them are unreliable"
+                        ));
+                    } else {
+                        self.info(text);
+                    }
                 }
                 Err(e) => self.error(format!("Rig computation stopped: {e}")),
             }

@@ -701,3 +701,39 @@ fn a_stale_or_corrupt_cache_file_is_recomputed_and_replaced() {
     let reloaded = facebem::cache::load(&path).expect("the cache file was replaced");
     assert_eq!(reloaded.basis, model.basis);
 }
+
+/// A face whose shell still crosses itself (the simplified ICT face: its lips press together at
+/// the mouth corners) is rigged, but the user is told, in red, that responses there are
+/// unreliable — the count is the pipeline's own.
+#[test]
+fn a_rig_with_intersecting_shell_elements_is_flagged() {
+    let cache = tempfile::tempdir().unwrap();
+    let options = viewer::ViewerOptions {
+        start_empty: true,
+        cache_dir: Some(cache.path().to_path_buf()),
+        ..Default::default()
+    };
+    let mut harness = egui_kittest::Harness::builder()
+        .with_size([1100.0, 720.0])
+        .wgpu()
+        .build_eframe(move |cc| viewer::ViewerApp::new(cc, options.clone()));
+    harness.run();
+    let face = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../assets/ict_narrow_face_dec2500_4loop.obj");
+    open_via_path_field(&mut harness, &face);
+    common::wait_idle(&mut harness);
+    let model = harness.state().model().expect("rig computed").clone();
+    let crossings = model.report.shell_self_intersections;
+    assert!(
+        crossings > 0,
+        "the simplified ICT shell no longer crosses itself: update this test"
+    );
+    let msg = harness.state().message().cloned().unwrap();
+    assert!(msg.is_error, "{}", msg.text);
+    assert!(
+        msg.text
+            .contains(&format!("{crossings} pairs of shell elements intersect")),
+        "{}",
+        msg.text
+    );
+}
