@@ -37,12 +37,8 @@ pub fn describe(path: &Path, mesh: &FaceMesh, rig: &FaceRig, model: Option<&Face
         count(ElementTag::Rim),
         3 * rig.shell.triangles.len()
     );
-    if let Some(m) = model.filter(|m| m.report.shell_self_intersections > 0) {
-        let _ = writeln!(
-            s,
-            "  WARNING: {} pairs of shell elements intersect; responses near them are unreliable",
-            m.report.shell_self_intersections
-        );
+    for w in model.map(|m| m.report.warnings()).unwrap_or_default() {
+        let _ = writeln!(s, "  WARNING: {w}");
     }
     let l = &rig.loops;
     let _ = writeln!(

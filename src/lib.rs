@@ -39,6 +39,6 @@ pub use atomic_write::{WriteError, write_atomic};
 pub use basis::{MuscleBasis, PoseError};
 pub use control::{Control, Progress, Stage};
 pub use pipeline::{
-    FaceModel, PipelineError, PipelineParams, PrecomputeReport, PreparedRig, SimplifiedFace,
-    build_face_model, prep_rig, prepare,
+    FaceModel, PipelineError, PipelineParams, PrecomputeReport, PreparedRig,
+    SUSPICIOUS_AMPLIFICATION, SimplifiedFace, build_face_model, prep_rig, prepare,
 };

@@ -61,12 +61,59 @@ pub struct PrecomputeReport {
     /// not a valid solid there (e.g. an input whose lips interpenetrate): the BEM is ill-posed
     /// and responses near those elements are unreliable.
     pub shell_self_intersections: usize,
+    /// Largest ratio, over the muscles, of the largest element displacement of a muscle's
+    /// response to the largest displacement its pattern prescribes. A linear elastic body held
+    /// by its skull stays near 1 (1.05 on MediaPipe, 1.81 on Lee Perry-Smith at default
+    /// settings); far above [`SUSPICIOUS_AMPLIFICATION`] the system is near-singular and the
+    /// responses are not physical (e.g. nearly coincident front and back surfaces: MediaPipe
+    /// with offset 0.06 reaches 466, the simplified ICT faces 63 and 258).
+    pub response_amplification: f64,
     /// Seconds spent in prep (simplification, rig).
     pub prep_seconds: f64,
     /// Seconds spent in the BEM solve (assembly, factorisation, solves).
     pub solve_seconds: f64,
     /// Seconds spent mapping element results to the user's vertices.
     pub transfer_seconds: f64,
+}
+
+/// [`PrecomputeReport::response_amplification`] above this flags a near-singular, unphysical
+/// solve (healthy rigs stay below 2; broken ones measured 45 to 5000).
+pub const SUSPICIOUS_AMPLIFICATION: f64 = 5.0;
+
+impl PrecomputeReport {
+    /// Human-readable warnings about the computed rig (empty when nothing is suspicious): shell
+    /// self-intersections and near-singular responses. The CLI, the viewer and
+    /// [`crate::describe`] show them.
+    ///
+    /// ```
+    /// let mut report = facebem::PrecomputeReport::default();
+    /// assert!(report.warnings().is_empty());
+    /// report.shell_self_intersections = 3;
+    /// report.response_amplification = 40.0;
+    /// let w = report.warnings();
+    /// assert!(w[0].contains("3 pairs of shell elements intersect"));
+    /// assert!(w[1].contains("40 times"));
+    /// ```
+    pub fn warnings(&self) -> Vec<String> {
+        let mut out = Vec::new();
+        if self.shell_self_intersections > 0 {
+            out.push(format!(
+                "{} pairs of shell elements intersect (does the face cross itself, e.g. at the \
+                 lips?); responses near them are unreliable",
+                self.shell_self_intersections
+            ));
+        }
+        if self.response_amplification > SUSPICIOUS_AMPLIFICATION {
+            out.push(format!(
+                "a muscle response moves the face {:.0} times more than the muscle itself \
+                 (healthy rigs: below {SUSPICIOUS_AMPLIFICATION:.0}); the BEM system is \
+                 near-singular, e.g. front and back of the shell nearly touch (try a smaller \
+                 offset)",
+                self.response_amplification
+            ));
+        }
+        out
+    }
 }
 
 /// A large face's simplified copy and the map that carries its fields to the full mesh.
@@ -268,12 +315,31 @@ pub fn build_face_model(
         triangles: mesh.triangles.clone(),
         displacements,
     };
+    let response_amplification = (0..rig.muscles.len())
+        .map(|k| {
+            let prescribed = rig
+                .muscle_pattern(k)
+                .iter()
+                .map(|(_, d)| d.length())
+                .fold(0.0, f64::max);
+            let response = solved.element[k]
+                .iter()
+                .map(|u| u.length())
+                .fold(0.0, f64::max);
+            if prescribed > 0.0 {
+                response / prescribed
+            } else {
+                0.0
+            }
+        })
+        .fold(0.0, f64::max);
     let report = PrecomputeReport {
         input_triangles: mesh.triangles.len(),
         simulated_triangles: simulated.triangles.len(),
         shell_elements: rig.shell.triangles.len(),
         dofs: 3 * rig.shell.triangles.len(),
         shell_self_intersections,
+        response_amplification,
         prep_seconds,
         solve_seconds,
         transfer_seconds: t2.elapsed().as_secs_f64(),

@@ -126,6 +126,20 @@ fn shell_does_not_intersect_itself(face: usize) {
     );
 }
 
+/// No muscle moves any element much more than the muscle itself moves: the solve is not
+/// near-singular (see `PrecomputeReport::response_amplification`), and the report has no warning.
+fn responses_are_not_amplified(face: usize) {
+    let m = model(face);
+    let a = m.report.response_amplification;
+    eprintln!("{}: response amplification {a:.3}", support::FACES[face]);
+    assert!(
+        (0.5..facebem::SUSPICIOUS_AMPLIFICATION).contains(&a),
+        "{}: {a}",
+        support::FACES[face]
+    );
+    assert_eq!(m.report.warnings(), Vec::<String>::new());
+}
+
 fn zygomaticus_l_pulls_left_corner_up_and_out(face: usize) {
     let m = model(face);
     let k = muscle(m, MuscleKind::ZygomaticusMajorL);
@@ -365,6 +379,11 @@ macro_rules! face_tests {
             }
             #[test]
             $(#[$mouth])*
+            fn responses_are_not_amplified() {
+                super::responses_are_not_amplified($face);
+            }
+            #[test]
+            $(#[$mouth])*
             fn shell_does_not_intersect_itself() {
                 super::shell_does_not_intersect_itself($face);
             }
@@ -397,7 +416,8 @@ face_tests!(mediapipe, 0);
 // (see `shell_does_not_intersect_itself`). face-prep repairs that in the shell of the full
 // meshes (0 intersecting pairs), but the pipeline simulates their 1500-triangle simplified
 // copies, whose mouth corners fold back so tightly that 10 (dec2500) / 16 (13k) front/back pairs
-// remain, and the zygomaticus responses there still blow up; run these two checks with
+// remain, and the responses there still blow up (amplification 63 / 258, see
+// `responses_are_not_amplified`); run these three checks with
 // `cargo test --release -p facebem --test end_to_end -- --ignored`.
 face_tests!(ict_2500, 1, #[ignore = "ICT simplified mouth corners: shell still intersects, responses blow up"]);
 face_tests!(lee_perry_smith, 2);
@@ -538,6 +558,47 @@ fn load_or_build_uses_the_cache_and_recovers_from_corruption() {
         facebem::cache::load(&path).is_ok(),
         "the corrupt cache was replaced"
     );
+}
+
+/// Regression (found 2026-11-24 by raising the shell offset): MediaPipe with offset 0.06 has a
+/// valid, intersection-free shell, but front and back nearly touch near the mouth corners and
+/// the solve is near-singular (responses hundreds of times the muscles' own motion). Nothing
+/// caught it; the report now measures it and warns.
+#[test]
+fn a_near_singular_solve_is_reported() {
+    let mesh = face_prep::load_face(&support::asset(support::FACES[0])).unwrap();
+    let params = PipelineParams {
+        rig: face_prep::RigParams {
+            offset: 0.06,
+            ..face_prep::RigParams::default()
+        },
+        ..PipelineParams::default()
+    };
+    let m = build_face_model(&mesh, &params, &Control::new()).unwrap();
+    assert_eq!(m.report.shell_self_intersections, 0);
+    let a = m.report.response_amplification;
+    assert!(a > 20.0 * facebem::SUSPICIOUS_AMPLIFICATION, "{a}");
+    let warnings = m.report.warnings();
+    assert_eq!(warnings.len(), 1, "{warnings:?}");
+    assert!(warnings[0].contains("near-singular"), "{}", warnings[0]);
+    // The measure is what it says: the largest element response over the largest prescribed
+    // displacement, per muscle, maximised over muscles.
+    let recomputed = (0..m.rig.muscles.len())
+        .map(|k| {
+            let d = m
+                .rig
+                .muscle_pattern(k)
+                .iter()
+                .map(|(_, d)| d.length())
+                .fold(0.0, f64::max);
+            let u = m.shell_element_response[k]
+                .iter()
+                .map(|u| u.length())
+                .fold(0.0, f64::max);
+            u / d
+        })
+        .fold(0.0, f64::max);
+    assert_eq!(a, recomputed);
 }
 
 /// User-adjusted feature boxes are a pipeline parameter: the skull and the muscles both come

@@ -236,11 +236,8 @@ fn rig(face: &Path, output: &Path, muscles: Option<&Path>, solver: &SolverArgs) 
     let model = compute(&mesh, obj_source, &params)?;
     cache::save(output, &model)?;
     let r = &model.report;
-    if r.shell_self_intersections > 0 {
-        eprintln!(
-            "warning: the shell has {} pairs of intersecting elements (does the input surface cross itself, e.g. at the lips?); responses near them are unreliable",
-            r.shell_self_intersections
-        );
+    for w in r.warnings() {
+        eprintln!("warning: {w}");
     }
     println!(
         "{}: {} front triangles ({} simulated), {} shell elements, {} muscles; prep {:.2} s, solve {:.2} s",

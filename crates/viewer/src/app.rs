@@ -570,17 +570,13 @@ impl ViewerApp {
                                 .unwrap_or_default()
                         ),
                     };
-                    let crossings = model.report.shell_self_intersections;
+                    let warnings = model.report.warnings();
                     self.set_model(name, model);
-                    if crossings > 0 {
-                        // Shown as an error: responses near the crossings are not trustworthy.
-                        self.error(format!(
-                            "{text}. Warning: {crossings} pairs of shell elements intersect \
-                             (does the face cross itself, e.g. at the lips?); responses near \
-                             them are unreliable"
-                        ));
-                    } else {
+                    if warnings.is_empty() {
                         self.info(text);
+                    } else {
+                        // Shown as an error: these responses are not trustworthy.
+                        self.error(format!("{text}. Warning: {}", warnings.join("; ")));
                     }
                 }
                 Err(e) => self.error(format!("Rig computation stopped: {e}")),
