@@ -16,6 +16,7 @@
 //! ```
 
 pub mod bvh;
+pub mod closest_point;
 mod error;
 mod face_mesh;
 pub mod features;
