@@ -127,7 +127,10 @@ fn shell_does_not_intersect_itself(face: usize) {
 }
 
 /// No muscle moves any element much more than the muscle itself moves: the solve is not
-/// near-singular (see `PrecomputeReport::response_amplification`), and the report has no warning.
+/// near-singular (see `PrecomputeReport::response_amplification`), and the report has no
+/// near-singular warning. Regression: on the simplified ICT faces the smoothed back face used to
+/// meet the front tangentially at the eye and mouth knife edges (amplification 63 and 258; now
+/// 3.2 and 9.0).
 fn responses_are_not_amplified(face: usize) {
     let m = model(face);
     let a = m.report.response_amplification;
@@ -137,7 +140,11 @@ fn responses_are_not_amplified(face: usize) {
         "{}: {a}",
         support::FACES[face]
     );
-    assert_eq!(m.report.warnings(), Vec::<String>::new());
+    let warnings = m.report.warnings();
+    assert!(
+        !warnings.iter().any(|w| w.contains("near-singular")),
+        "{warnings:?}"
+    );
 }
 
 fn zygomaticus_l_pulls_left_corner_up_and_out(face: usize) {
@@ -366,7 +373,7 @@ fn cache_round_trip_and_rejections(face: usize) {
 }
 
 macro_rules! face_tests {
-    ($name:ident, $face:expr $(, #[$mouth:meta])*) => {
+    ($name:ident, $face:expr $(, #[$mouth:meta])* $(; #[$amplified:meta])*) => {
         mod $name {
             #[test]
             fn skull_does_not_move() {
@@ -378,7 +385,7 @@ macro_rules! face_tests {
                 super::zygomaticus_l_pulls_left_corner_up_and_out($face);
             }
             #[test]
-            $(#[$mouth])*
+            $(#[$amplified])*
             fn responses_are_not_amplified() {
                 super::responses_are_not_amplified($face);
             }
@@ -412,16 +419,21 @@ macro_rules! face_tests {
 }
 
 face_tests!(mediapipe, 0);
-// The ICT inputs' lips interpenetrate at the mouth corners and press together along the mouth
-// (see `shell_does_not_intersect_itself`). face-prep repairs that in the shell of the full
-// meshes (0 intersecting pairs), but the pipeline simulates their 1500-triangle simplified
-// copies, whose mouth corners fold back so tightly that 10 (dec2500) / 16 (13k) front/back pairs
-// remain, and the responses there still blow up (amplification 63 / 258, see
-// `responses_are_not_amplified`); run these three checks with
+// The ICT inputs' lips roll inward, press together along the mouth and interpenetrate at the
+// corners (see `shell_does_not_intersect_itself`). face-prep repairs that in the shell of the
+// full meshes (0 intersecting pairs), but the pipeline simulates their 1500-triangle simplified
+// copies, whose mouth corners fold so tightly that 4 front/back pairs still cross at the right
+// corner of each; and the left corner vertex (the mouth loop's extreme x, 0.8 cm deep inside
+// the pressed lips) moves outward but down. The 2500-triangle face's solve is well-conditioned
+// (amplification 3.2, tested); the 13k face's is not yet (9.0). Run the ignored checks with
 // `cargo test --release -p facebem --test end_to_end -- --ignored`.
-face_tests!(ict_2500, 1, #[ignore = "ICT simplified mouth corners: shell still intersects, responses blow up"]);
+face_tests!(ict_2500, 1, #[ignore = "ICT simplified mouth corners: 4 crossing pairs, deep corner vertex moves down"]);
 face_tests!(lee_perry_smith, 2);
-face_tests!(ict_13k, 3, #[ignore = "ICT simplified mouth corners: shell still intersects, responses blow up"]);
+face_tests!(
+    ict_13k, 3,
+    #[ignore = "ICT simplified mouth corners: 4 crossing pairs, deep corner vertex moves down"];
+    #[ignore = "ICT 13k simplified: largest response 9 times the muscles' own motion"]
+);
 
 /// On the symmetric MediaPipe face, each left muscle's response is the mirror image (x → −x)
 /// of its right partner's, vertex by mirrored vertex.
@@ -560,16 +572,16 @@ fn load_or_build_uses_the_cache_and_recovers_from_corruption() {
     );
 }
 
-/// Regression (found 2026-11-24 by raising the shell offset): MediaPipe with offset 0.06 has a
-/// valid, intersection-free shell, but front and back nearly touch near the mouth corners and
-/// the solve is near-singular (responses hundreds of times the muscles' own motion). Nothing
-/// caught it; the report now measures it and warns.
+/// A paper-thin shell (offset 0.05 % of the face size, about 0.1 mm on MediaPipe: front and
+/// back nearly coincide everywhere) is a valid, intersection-free solid on which the solve is
+/// near-singular (responses about 60 times the muscles' own motion). The report measures it
+/// and warns.
 #[test]
 fn a_near_singular_solve_is_reported() {
     let mesh = face_prep::load_face(&support::asset(support::FACES[0])).unwrap();
     let params = PipelineParams {
         rig: face_prep::RigParams {
-            offset: 0.06,
+            offset: 0.0005,
             ..face_prep::RigParams::default()
         },
         ..PipelineParams::default()
@@ -577,7 +589,7 @@ fn a_near_singular_solve_is_reported() {
     let m = build_face_model(&mesh, &params, &Control::new()).unwrap();
     assert_eq!(m.report.shell_self_intersections, 0);
     let a = m.report.response_amplification;
-    assert!(a > 20.0 * facebem::SUSPICIOUS_AMPLIFICATION, "{a}");
+    assert!(a > 5.0 * facebem::SUSPICIOUS_AMPLIFICATION, "{a}");
     let warnings = m.report.warnings();
     assert_eq!(warnings.len(), 1, "{warnings:?}");
     assert!(warnings[0].contains("near-singular"), "{}", warnings[0]);
@@ -599,6 +611,33 @@ fn a_near_singular_solve_is_reported() {
         })
         .fold(0.0, f64::max);
     assert_eq!(a, recomputed);
+}
+
+/// Regression (found 2026-11-24 by raising the shell offset): MediaPipe with offset 0.06 had an
+/// intersection-free shell on which the solve was near-singular (amplification 466), because
+/// the smoothed back face met the front tangentially beside the mouth's knife edge. With the
+/// offset's magnitude set from the knife-edge taper after smoothing, it is well-conditioned
+/// (measured 1.00).
+#[test]
+fn thick_shells_stay_well_conditioned() {
+    let mesh = face_prep::load_face(&support::asset(support::FACES[0])).unwrap();
+    for offset in [0.06] {
+        let params = PipelineParams {
+            rig: face_prep::RigParams {
+                offset,
+                ..face_prep::RigParams::default()
+            },
+            ..PipelineParams::default()
+        };
+        let m = build_face_model(&mesh, &params, &Control::new()).unwrap();
+        assert_eq!(m.report.shell_self_intersections, 0, "offset {offset}");
+        let a = m.report.response_amplification;
+        assert!(
+            (0.5..2.0).contains(&a),
+            "offset {offset}: amplification {a}"
+        );
+        assert_eq!(m.report.warnings(), Vec::<String>::new(), "offset {offset}");
+    }
 }
 
 /// User-adjusted feature boxes are a pipeline parameter: the skull and the muscles both come

@@ -33,10 +33,11 @@ pub struct RigParams {
     /// Distance from the eye and mouth contours, fraction of face size, over which the back
     /// face's offset grows from zero (knife edge) to `offset`. Default 0.05.
     pub taper: f64,
-    /// Laplacian smoothing iterations of the back face's displacement field. Default 10.
+    /// Laplacian smoothing iterations of the back face's offset directions. Default 10.
     pub smoothing_iterations: usize,
-    /// Rounds of local repair of self-intersections of the back face (each round halves the
-    /// offset of the back vertices of intersecting elements). Default 8.
+    /// Rounds of local repair of self-intersections of the back face (each round scales the
+    /// offset of the back vertices of intersecting elements by [`crate::shell::REPAIR_SHRINK`]).
+    /// Default 8.
     pub repair_rounds: usize,
     /// Rounds of repair of the input surface's own self-intersections and cracks (e.g. lips
     /// that interpenetrate or press together) in the shell's copy of the front: the vertices

@@ -14,18 +14,20 @@
 //! 1. Offset direction per vertex: the area-weighted vertex normal, or, where an incident
 //!    triangle disagrees with it (folds such as mouth corners), the candidate direction with the
 //!    best worst-case agreement ([`offset_directions`]).
-//! 2. Target inward displacement: `offset` for interior vertices, tapered to zero (smoothstep
-//!    over `taper`, measured along mesh edges) toward the eye and mouth contours, which stay
-//!    fixed as knife edges; `thickness` for the outer contour, whose back copy closes the rim.
-//! 3. A few Laplacian smoothing passes of the displacement field; any vertex whose displacement
-//!    no longer goes behind all of its incident front triangles falls back to step 1's direction.
+//! 2. A few Laplacian smoothing passes of the offset directions (interior vertices).
+//! 3. Inward displacement along the smoothed direction: `offset` for interior vertices, tapered
+//!    to zero toward the eye and mouth contours ([`knife_edge_taper`] over `taper`, measured
+//!    along mesh edges), which stay fixed as knife edges with a finite wedge angle; `thickness`
+//!    for the outer contour, whose back copy closes the rim. Any vertex whose displacement does
+//!    not go behind all of its incident front triangles falls back to step 1's direction.
 //! 4. Each displacement is clamped to `clamp_fraction` of the free distance to the front surface
 //!    along it (nostrils, rolled lips).
 //! 5. Back triangles are the front ones reversed; an interior edge joining two eye/mouth
 //!    contour vertices (a "chord") would coincide with its front twin, so on the back it is split
 //!    at a displaced mid-point. The rim joins each outer-contour edge to its back copy.
 //! 6. Local repair: back/rim elements found intersecting anything (BVH triangle–triangle test)
-//!    get their moved vertices redirected, then their offset halved, for a few rounds; vertices
+//!    get their moved vertices redirected, then their offset shrunk ([`REPAIR_SHRINK`] per
+//!    round), for a few rounds; vertices
 //!    still intersecting afterwards get their full offset back and are then moved, one at a
 //!    time, to whichever of a set of nearby candidate positions leaves the fewest intersections
 //!    (tight folds where the lips meet at a mouth corner).
@@ -176,25 +178,20 @@ impl Shell {
         }
         let adjacency = vertex_adjacency(n, triangles);
         let dist = contour_distance(vertices, &adjacency, &kind);
-        let taper = |d: f64| {
-            let s = if dims.taper > 0.0 {
-                (d / dims.taper).min(1.0)
-            } else {
-                1.0
-            };
-            s * s * (3.0 - 2.0 * s)
-        };
-        // Target inward displacement: the full offset away from the eyes and mouth, tapered to
-        // zero at their knife edges (smoothstep over `taper`), the thickness at the outer contour.
+        let taper = |d: f64| knife_edge_taper(d, dims.taper);
+        // Offset directions, smoothed: start from the full inward offset everywhere (the eye and
+        // mouth contours included, so that their neighbours' directions are not biased), then
+        // Laplacian-smooth the interior vertices. This irons out folds where vertex normals turn
+        // fast (mouth corners, nostril rims, lips). Only the direction is kept: the magnitude
+        // is set afterwards from the taper, so smoothing cannot thin the tissue next to a knife
+        // edge (smoothing magnitudes pinned at zero on the contours made the back face tangent
+        // to the front there: a zero-angle wedge, on which the BEM system is near-singular).
         let mut disp: Vec<DVec3> = (0..n)
             .map(|v| match kind[v] {
-                1 => DVec3::ZERO,
                 2 => -normals[v] * dims.thickness,
-                _ => -normals[v] * dims.offset * taper(dist[v]),
+                _ => -normals[v] * dims.offset,
             })
             .collect();
-        // Laplacian smoothing of the displacement of interior vertices: irons out folds where
-        // vertex normals turn fast (mouth corners, nostril rims, lips).
         for _ in 0..dims.smoothing_iterations {
             let prev = disp.clone();
             for v in 0..n {
@@ -206,6 +203,18 @@ impl Shell {
                         / adjacency[v].len() as f64;
                     disp[v] = 0.5 * (prev[v] + avg);
                 }
+            }
+        }
+        // Target inward displacement: the full offset away from the eyes and mouth, tapered to
+        // zero at their knife edges, the thickness at the outer contour.
+        for v in 0..n {
+            match kind[v] {
+                1 => disp[v] = DVec3::ZERO,
+                0 => {
+                    let dir = disp[v].try_normalize().unwrap_or(-normals[v]);
+                    disp[v] = dir * dims.offset * taper(dist[v]);
+                }
+                _ => {}
             }
         }
         // Every moved vertex must go behind all of its incident front triangles; where the
@@ -345,8 +354,9 @@ impl Shell {
     }
 
     /// Where back or rim elements intersect another element, their moved vertices first switch
-    /// to the robust offset direction (`robust_dir`, outward) and then get half their offset
-    /// per round (toward their anchors on the front face), for at most `rounds` rounds.
+    /// to the robust offset direction (`robust_dir`, outward) and then have their offset scaled
+    /// by [`REPAIR_SHRINK`] per round (toward their anchors on the front face), for at most
+    /// `rounds` rounds.
     /// Intersections between two front elements belong to the input and are left alone.
     fn repair_back_intersections(
         &mut self,
@@ -387,7 +397,7 @@ impl Shell {
                     redirected[v] = true;
                     disp[v] = -robust_dir[v] * disp[v].length();
                 } else {
-                    scale[v] *= 0.5;
+                    scale[v] *= REPAIR_SHRINK;
                 }
                 self.vertices[v] = anchor[v] + disp[v] * scale[v];
             }
@@ -651,6 +661,12 @@ fn triangles_intersect(ta: [u32; 3], a: &[DVec3; 3], tb: [u32; 3], b: &[DVec3; 3
     }
 }
 
+/// Factor applied per repair round to the offset of back/rim vertices of intersecting elements.
+/// Gentler than halving: with the full offset kept up to the knife-edge taper, halving thinned
+/// concave creases (Lee Perry-Smith's alar groove) to a quarter of the offset, where 0.7 resolves
+/// the same intersections at 0.4 or more of it.
+pub const REPAIR_SHRINK: f64 = 0.7;
+
 /// Separation left between two repaired front triangles, as a fraction of the longest edge of
 /// the triangle a vertex is pushed out of.
 pub const FRONT_REPAIR_GAP: f64 = 0.02;
@@ -870,6 +886,31 @@ pub fn offset_directions(vertices: &[DVec3], triangles: &[[u32; 3]]) -> Vec<DVec
                 .unwrap_or(n)
         })
         .collect()
+}
+
+/// Fraction of the full back-face offset at distance `d` (along mesh edges) from an eye or
+/// mouth contour, for a taper length `taper`: `s (2 − s)` with `s = min(d / taper, 1)`.
+///
+/// It starts with a finite slope, so front and back meet at a knife edge with a real wedge
+/// angle (the slope is `2 offset / taper`: about 31° at the default settings) instead of
+/// tangentially, and it reaches the full offset with zero slope, so the back face has no crease
+/// where the taper ends. A `taper` of 0 gives the full offset everywhere.
+///
+/// ```
+/// use face_prep::shell::knife_edge_taper;
+/// assert_eq!(knife_edge_taper(0.0, 2.0), 0.0);
+/// assert_eq!(knife_edge_taper(1.0, 2.0), 0.75);
+/// assert_eq!(knife_edge_taper(5.0, 2.0), 1.0);
+/// // Finite slope at the contour: 2 / taper.
+/// assert!((knife_edge_taper(1e-6, 2.0) / 1e-6 - 1.0).abs() < 1e-5);
+/// ```
+pub fn knife_edge_taper(d: f64, taper: f64) -> f64 {
+    let s = if taper > 0.0 {
+        (d / taper).clamp(0.0, 1.0)
+    } else {
+        1.0
+    };
+    s * (2.0 - s)
 }
 
 /// Neighbouring vertices of every vertex (sorted, no repeats).
