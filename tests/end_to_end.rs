@@ -572,21 +572,26 @@ fn load_or_build_uses_the_cache_and_recovers_from_corruption() {
     );
 }
 
+/// The MediaPipe face's model with back-face offset `offset` (fraction of the face size).
+fn mediapipe_with_offset(offset: f64) -> FaceModel {
+    let mesh = face_prep::load_face(&support::asset(support::FACES[0])).unwrap();
+    let params = PipelineParams {
+        rig: face_prep::RigParams {
+            offset,
+            ..face_prep::RigParams::default()
+        },
+        ..PipelineParams::default()
+    };
+    build_face_model(&mesh, &params, &Control::new()).unwrap()
+}
+
 /// A paper-thin shell (offset 0.05 % of the face size, about 0.1 mm on MediaPipe: front and
 /// back nearly coincide everywhere) is a valid, intersection-free solid on which the solve is
 /// near-singular (responses about 60 times the muscles' own motion). The report measures it
 /// and warns.
 #[test]
 fn a_near_singular_solve_is_reported() {
-    let mesh = face_prep::load_face(&support::asset(support::FACES[0])).unwrap();
-    let params = PipelineParams {
-        rig: face_prep::RigParams {
-            offset: 0.0005,
-            ..face_prep::RigParams::default()
-        },
-        ..PipelineParams::default()
-    };
-    let m = build_face_model(&mesh, &params, &Control::new()).unwrap();
+    let m = mediapipe_with_offset(0.0005);
     assert_eq!(m.report.shell_self_intersections, 0);
     let a = m.report.response_amplification;
     assert!(a > 5.0 * facebem::SUSPICIOUS_AMPLIFICATION, "{a}");
@@ -620,15 +625,7 @@ fn a_near_singular_solve_is_reported() {
 /// (measured 1.00).
 #[test]
 fn thick_shells_stay_well_conditioned() {
-    let mesh = face_prep::load_face(&support::asset(support::FACES[0])).unwrap();
-    let params = PipelineParams {
-        rig: face_prep::RigParams {
-            offset: 0.06,
-            ..face_prep::RigParams::default()
-        },
-        ..PipelineParams::default()
-    };
-    let m = build_face_model(&mesh, &params, &Control::new()).unwrap();
+    let m = mediapipe_with_offset(0.06);
     assert_eq!(m.report.shell_self_intersections, 0);
     let a = m.report.response_amplification;
     assert!((0.5..2.0).contains(&a), "amplification {a}");
