@@ -26,11 +26,10 @@
 //!    contour vertices (a "chord") would coincide with its front twin, so on the back it is split
 //!    at a displaced mid-point. The rim joins each outer-contour edge to its back copy.
 //! 6. Local repair: back/rim elements found intersecting anything (BVH triangle–triangle test)
-//!    get their moved vertices redirected, then their offset shrunk ([`REPAIR_SHRINK`] per
-//!    round), for a few rounds; vertices
-//!    still intersecting afterwards get their full offset back and are then moved, one at a
-//!    time, to whichever of a set of nearby candidate positions leaves the fewest intersections
-//!    (tight folds where the lips meet at a mouth corner).
+//!    get their moved vertices redirected, then their offset shrunk by [`REPAIR_SHRINK`] per
+//!    round, for a few rounds; vertices still intersecting afterwards get their full offset back
+//!    and are then moved, one at a time, to whichever of a set of nearby candidate positions
+//!    leaves the fewest intersections (tight folds where the lips meet at a mouth corner).
 //!
 //! Vertex layout: face vertices `0..n` (the input's, moved only by step 0), then back copies of
 //! every vertex not on an eye or mouth contour (outer contour copies included) in face order,
