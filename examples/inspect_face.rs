@@ -1,7 +1,8 @@
 //! Prints per-muscle diagnostics of one face (chains, mouth-corner and brow responses on the
-//! simulated shell): `cargo run --release --example inspect_face -- assets/face.obj`.
+//! simulated shell, the element where each response peaks and how thin the tissue is there):
+//! `cargo run --release --example inspect_face -- assets/face.obj`.
 
-use face_prep::MuscleKind;
+use face_prep::{ElementTag, MuscleKind};
 use facebem::{Control, PipelineParams, build_face_model};
 
 fn main() -> anyhow::Result<()> {
@@ -83,7 +84,43 @@ fn main() -> anyhow::Result<()> {
             "   contract: left corner {:.4}, right corner {:.4}",
             -f[left], -f[right]
         );
+        // Where the response peaks, and how thin the tissue is there: near-singular solves
+        // peak at front/back pairs that nearly coincide (gap ratio well below 0.1).
+        let (e, u) = m.shell_element_response[k]
+            .iter()
+            .enumerate()
+            .map(|(e, u)| (e, u.length()))
+            .fold((0, 0.0f64), |a, b| if b.1 > a.1 { b } else { a });
+        println!(
+            "   largest element response {u:.3} at element {e} ({:?}, centroid {:.2}), gap ratio {:.3}",
+            rig.shell.tags[e],
+            rig.shell.centroid(e),
+            gap_ratio(&rig.shell, e)
+        );
     }
+    let thin = (0..rig.shell.element_count())
+        .filter(|&e| rig.shell.tags[e] == ElementTag::Front && gap_ratio(&rig.shell, e) < 0.1)
+        .count();
+    println!("front elements with gap ratio below 0.1: {thin}");
     let _ = MuscleKind::ALL;
     Ok(())
+}
+
+/// Distance from element `e`'s centroid to the nearest centroid of the other side of the shell
+/// (front ↔ back), over the square root of `e`'s area: how thin the tissue is at `e` relative
+/// to the element size. Infinite for rim elements.
+fn gap_ratio(shell: &face_prep::Shell, e: usize) -> f64 {
+    let other = match shell.tags[e] {
+        ElementTag::Front => ElementTag::Back,
+        ElementTag::Back => ElementTag::Front,
+        ElementTag::Rim => return f64::INFINITY,
+    };
+    let c = shell.centroid(e);
+    let [a, b, d] = shell.corners(e);
+    let area = 0.5 * (b - a).cross(d - a).length();
+    let nearest = (0..shell.element_count())
+        .filter(|&j| shell.tags[j] == other)
+        .map(|j| shell.centroid(j).distance(c))
+        .fold(f64::INFINITY, f64::min);
+    nearest / area.sqrt().max(f64::MIN_POSITIVE)
 }
