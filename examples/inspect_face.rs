@@ -97,6 +97,43 @@ fn main() -> anyhow::Result<()> {
             rig.shell.centroid(e),
             gap_ratio(&rig.shell, e)
         );
+        // What the peak sits against: the nearest element across the shell and, for a back
+        // element, how deep its vertices lie below its front triangle (thin tissue, knife edges).
+        if let Some(j) = nearest_other(&rig.shell, e) {
+            let n = |e: usize| {
+                let [a, b, d] = rig.shell.corners(e);
+                (b - a).cross(d - a)
+            };
+            println!(
+                "   nearest other-side element {j} (centroid {:.2}, area {:.4} vs {:.4}), normals' cos {:.3}",
+                rig.shell.centroid(j),
+                0.5 * n(j).length(),
+                0.5 * n(e).length(),
+                n(e).normalize().dot(n(j).normalize())
+            );
+            if rig.shell.tags[e] == ElementTag::Back {
+                let src = rig.shell.source_triangle[e] as usize;
+                let ft = rig.shell.triangles[src];
+                let bt = rig.shell.triangles[e];
+                let thick: Vec<String> = bt
+                    .iter()
+                    .map(|&b| {
+                        let d = ft
+                            .iter()
+                            .map(|&f| {
+                                rig.shell.vertices[f as usize]
+                                    .distance(rig.shell.vertices[b as usize])
+                            })
+                            .fold(f64::INFINITY, f64::min);
+                        format!("v{b}:{d:.4}")
+                    })
+                    .collect();
+                println!(
+                    "   source front {src} {ft:?}, back vertices' distance to it: {}",
+                    thick.join(" ")
+                );
+            }
+        }
     }
     let thin = (0..rig.shell.element_count())
         .filter(|&e| rig.shell.tags[e] == ElementTag::Front && gap_ratio(&rig.shell, e) < 0.1)
@@ -123,4 +160,22 @@ fn gap_ratio(shell: &face_prep::Shell, e: usize) -> f64 {
         .map(|j| shell.centroid(j).distance(c))
         .fold(f64::INFINITY, f64::min);
     nearest / area.sqrt().max(f64::MIN_POSITIVE)
+}
+
+/// The element on the other side of the shell (front ↔ back) whose centroid is nearest to `e`'s.
+fn nearest_other(shell: &face_prep::Shell, e: usize) -> Option<usize> {
+    let other = match shell.tags[e] {
+        ElementTag::Front => ElementTag::Back,
+        ElementTag::Back => ElementTag::Front,
+        ElementTag::Rim => return None,
+    };
+    let c = shell.centroid(e);
+    (0..shell.element_count())
+        .filter(|&j| shell.tags[j] == other)
+        .min_by(|&a, &b| {
+            shell
+                .centroid(a)
+                .distance(c)
+                .total_cmp(&shell.centroid(b).distance(c))
+        })
 }

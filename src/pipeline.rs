@@ -63,11 +63,12 @@ pub struct PrecomputeReport {
     pub shell_self_intersections: usize,
     /// Largest ratio, over the muscles, of the largest element displacement of a muscle's
     /// response to the largest displacement its pattern prescribes. A linear elastic body held
-    /// by its skull stays near 1 (1.00 on MediaPipe, 1.57 on Lee Perry-Smith, 3.2 on the
-    /// simplified 2500-triangle ICT face at default settings); far above
-    /// [`SUSPICIOUS_AMPLIFICATION`] the
-    /// system is near-singular and the responses are not physical (e.g. front and back surfaces
-    /// nearly coincident: MediaPipe with offset 0.0005 reaches 60).
+    /// by its skull stays near 1 (1.00 on MediaPipe, Lee Perry-Smith and the simplified
+    /// 2500-triangle ICT face, 3.8 on the simplified 13k ICT face, at default settings); far
+    /// above [`SUSPICIOUS_AMPLIFICATION`] the system is near-singular and the responses are not
+    /// physical (e.g. front and back surfaces nearly coincident: MediaPipe with offset 0.0005
+    /// reaches 60; thin rolled eyelids and lips: the ICT faces at other simplification targets
+    /// or offsets, 8 to 740).
     pub response_amplification: f64,
     /// Seconds spent in prep (simplification, rig).
     pub prep_seconds: f64,
@@ -78,7 +79,7 @@ pub struct PrecomputeReport {
 }
 
 /// [`PrecomputeReport::response_amplification`] above this flags a near-singular, unphysical
-/// solve (healthy rigs measured 1 to 3.2; broken ones 9 to 5000).
+/// solve (healthy rigs measured 1 to 3.8; broken ones 8 to 5000).
 pub const SUSPICIOUS_AMPLIFICATION: f64 = 5.0;
 
 impl PrecomputeReport {
@@ -214,12 +215,7 @@ pub struct PreparedRig {
 pub fn prepare(mesh: &FaceMesh, params: &PipelineParams) -> Result<PreparedRig, PipelineError> {
     let large = mesh.triangles.len() > params.large_face.max_triangles;
     let (simulated, simplified) = if large {
-        let s = crate::large_face::simplify(
-            &mesh.vertices,
-            &mesh.triangles,
-            params.large_face.target_triangles,
-            params.large_face.max_error,
-        )?;
+        let s = crate::large_face::simplify(&mesh.vertices, &mesh.triangles, &params.large_face)?;
         let sim_mesh = FaceMesh::from_triangles(&s.vertices, &s.triangles)?;
         (sim_mesh, Some(s))
     } else {

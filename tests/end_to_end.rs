@@ -112,10 +112,12 @@ fn skull_does_not_move(face: usize) {
     );
 }
 
-/// A self-intersecting shell is not a solid: the BEM is ill-posed there. Regression: both ICT
+/// A self-intersecting shell is not a solid: the BEM is ill-posed there. Regressions: both ICT
 /// faces' input lips interpenetrate at the mouth corners (front triangles cross each other at
 /// canonical x ≈ ±1.9, y ≈ −4.75), which made the zygomaticus responses blow up (corner
-/// displacements of 10³–10⁴ face units on the 13k face).
+/// displacements of 10³–10⁴ face units on the 13k face); and simplifying by position only
+/// folded their rolled lips into a pleat at the right mouth corner, where 4 front/back pairs
+/// crossed (see `LargeFaceParams::normal_weight`).
 fn shell_does_not_intersect_itself(face: usize) {
     let m = model(face);
     assert_eq!(
@@ -129,8 +131,10 @@ fn shell_does_not_intersect_itself(face: usize) {
 /// No muscle moves any element much more than the muscle itself moves: the solve is not
 /// near-singular (see `PrecomputeReport::response_amplification`), and the report has no
 /// near-singular warning. Regression: on the simplified ICT faces the smoothed back face used to
-/// meet the front tangentially at the eye and mouth knife edges (amplification 63 and 258; now
-/// 3.2 and 9.0).
+/// meet the front tangentially at the eye and mouth knife edges (amplification 63 and 258; 3.2
+/// and 9.0 after the finite wedge angle; 1.0 and 3.8 with the normal-weighted simplification).
+/// The ICT faces' thin rolled eyelids and lips keep their simplified copies sensitive: see the
+/// README's known limitations for a sweep over the simplification target and the offset.
 fn responses_are_not_amplified(face: usize) {
     let m = model(face);
     let a = m.report.response_amplification;
@@ -178,6 +182,39 @@ fn zygomaticus_l_pulls_left_corner_up_and_out(face: usize) {
     assert!(dl.x > 0.0 && dl.y > 0.0, "left corner moved {dl}");
     // "Far more": at least 5x the motion of the opposite corner.
     assert!(dl.length() > 5.0 * dr.length(), "left {dl} vs right {dr}");
+}
+
+/// Contracting a standard muscle moves its front elements along its definer (start → end, in
+/// x-y): averaged over the ten muscles' front chains the cosine between each element's motion
+/// and the definer is at least 0.8, and at most 5 % of the elements move backward. Regression:
+/// toward the raw next centroid, which alternates about the definer, the mean cosine was
+/// 0.63–0.77 and 27 of 490 steps went backward (see `face_prep::muscles::muscle_pattern`).
+fn muscle_patterns_follow_their_definers(face: usize) {
+    let m = model(face);
+    let (mut count, mut backward, mut cos_sum) = (0usize, 0usize, 0.0);
+    for (k, mu) in m.rig.muscles.iter().enumerate() {
+        let kind = mu.kind.expect("default rigs have the standard muscles");
+        let (start, end) = face_prep::muscles::muscle_definer(kind, &m.rig.boxes);
+        let axis = (end - start).normalize();
+        let pattern = m.rig.muscle_pattern(k);
+        for (_, relax) in &pattern[..mu.front_chain.len()] {
+            let Some(contract) = (-relax.truncate()).try_normalize() else {
+                continue; // the chain's end element
+            };
+            let c = contract.dot(axis);
+            count += 1;
+            cos_sum += c;
+            backward += usize::from(c < 0.0);
+        }
+    }
+    let mean = cos_sum / count as f64;
+    eprintln!(
+        "{}: {count} front steps, mean cosine {mean:.3}, {backward} backward",
+        support::FACES[face]
+    );
+    assert!(count >= 50, "{count}");
+    assert!(mean >= 0.8, "mean cosine {mean}");
+    assert!(backward * 20 <= count, "{backward} of {count} backward");
 }
 
 fn frontalis_contraction_raises_brow(face: usize) {
@@ -373,26 +410,28 @@ fn cache_round_trip_and_rejections(face: usize) {
 }
 
 macro_rules! face_tests {
-    ($name:ident, $face:expr $(, #[$mouth:meta])* $(; #[$amplified:meta])*) => {
+    ($name:ident, $face:expr $(, #[$zygomaticus:meta])*) => {
         mod $name {
             #[test]
             fn skull_does_not_move() {
                 super::skull_does_not_move($face);
             }
             #[test]
-            $(#[$mouth])*
+            $(#[$zygomaticus])*
             fn zygomaticus_l_pulls_left_corner_up_and_out() {
                 super::zygomaticus_l_pulls_left_corner_up_and_out($face);
             }
             #[test]
-            $(#[$amplified])*
             fn responses_are_not_amplified() {
                 super::responses_are_not_amplified($face);
             }
             #[test]
-            $(#[$mouth])*
             fn shell_does_not_intersect_itself() {
                 super::shell_does_not_intersect_itself($face);
+            }
+            #[test]
+            fn muscle_patterns_follow_their_definers() {
+                super::muscle_patterns_follow_their_definers($face);
             }
             #[test]
             fn frontalis_contraction_raises_brow() {
@@ -419,21 +458,15 @@ macro_rules! face_tests {
 }
 
 face_tests!(mediapipe, 0);
-// The ICT inputs' lips roll inward, press together along the mouth and interpenetrate at the
-// corners (see `shell_does_not_intersect_itself`). face-prep repairs that in the shell of the
-// full meshes (0 intersecting pairs), but the pipeline simulates their 1500-triangle simplified
-// copies, whose mouth corners fold so tightly that 4 front/back pairs still cross at the right
-// corner of each; and the left corner vertex (the mouth loop's extreme x, 0.8 cm deep inside
-// the pressed lips) moves outward but down. The 2500-triangle face's solve is well-conditioned
-// (amplification 3.2, tested); the 13k face's is not yet (9.0). Run the ignored checks with
+// The ICT inputs' lips roll inward and press together, so the mouth loop's extreme vertex (the
+// "corner" of `zygomaticus_l_pulls_left_corner_up_and_out`) lies 0.8 cm deep inside the pressed
+// lips, 0.4 cm below the zygomaticus' start (the mouth box's top corner). There it moves outward
+// but down on contraction (dec2500 (0.62, −0.22), 13k (−0.02, −0.14)); the front surface in front
+// of it, what a viewer sees as the corner, moves up and outward. Run the ignored checks with
 // `cargo test --release -p facebem --test end_to_end -- --ignored`.
-face_tests!(ict_2500, 1, #[ignore = "ICT simplified mouth corners: 4 crossing pairs, deep corner vertex moves down"]);
+face_tests!(ict_2500, 1, #[ignore = "ICT: the mouth loop's corner vertex, deep inside the pressed lips, moves down"]);
 face_tests!(lee_perry_smith, 2);
-face_tests!(
-    ict_13k, 3,
-    #[ignore = "ICT simplified mouth corners: 4 crossing pairs, deep corner vertex moves down"];
-    #[ignore = "ICT 13k simplified: largest response 9 times the muscles' own motion"]
-);
+face_tests!(ict_13k, 3, #[ignore = "ICT: the mouth loop's corner vertex, deep inside the pressed lips, moves down"]);
 
 /// On the symmetric MediaPipe face, each left muscle's response is the mirror image (x → −x)
 /// of its right partner's, vertex by mirrored vertex.

@@ -702,9 +702,10 @@ fn a_stale_or_corrupt_cache_file_is_recomputed_and_replaced() {
     assert_eq!(reloaded.basis, model.basis);
 }
 
-/// A face whose shell still crosses itself (the simplified ICT face: its lips press together at
-/// the mouth corners) is rigged, but the user is told, in red, that responses there are
-/// unreliable — the count is the pipeline's own.
+/// A face whose shell crosses itself is rigged, but the user is told, in red, that responses
+/// there are unreliable — the count is the pipeline's own. The crossing shell: the ICT
+/// 2500-triangle face simplified by position only (`normal_weight` 0), which folds its rolled
+/// lips into a pleat at the right mouth corner (the default weights normals and is clean).
 #[test]
 fn a_rig_with_intersecting_shell_elements_is_flagged() {
     let cache = tempfile::tempdir().unwrap();
@@ -722,11 +723,18 @@ fn a_rig_with_intersecting_shell_elements_is_flagged() {
         .join("../../assets/ict_narrow_face_dec2500_4loop.obj");
     open_via_path_field(&mut harness, &face);
     common::wait_idle(&mut harness);
+    let clean = harness.state().model().expect("rig computed").clone();
+    assert_eq!(clean.report.shell_self_intersections, 0);
+    assert!(!harness.state().message().is_some_and(|m| m.is_error));
+    harness.state_mut().params_mut().large_face.normal_weight = 0.0;
+    harness.get_by_label("Rebuild rig").click();
+    harness.run();
+    common::wait_idle(&mut harness);
     let model = harness.state().model().expect("rig computed").clone();
     let crossings = model.report.shell_self_intersections;
     assert!(
         crossings > 0,
-        "the simplified ICT shell no longer crosses itself: update this test"
+        "the position-only ICT copy no longer crosses itself: update this test"
     );
     let msg = harness.state().message().cloned().unwrap();
     assert!(msg.is_error, "{}", msg.text);
