@@ -178,8 +178,10 @@ pub fn place_standard_muscles(
 /// ```
 /// use face_prep::muscles::chain_path;
 /// use glam::DVec3;
-/// // A zig-zag along +x: the smoothed interior points lie on the axis.
-/// let c = [0.0, 1.0, 2.0, 3.0, 4.0].map(|x: f64| DVec3::new(x, if x as i32 % 2 == 0 { 0.3 } else { -0.3 }, 0.0));
+/// // A zig-zag along +x, 0.3 to either side: the smoothed interior points lie within 0.15.
+/// let c: Vec<DVec3> = (0..5)
+///     .map(|k| DVec3::new(k as f64, if k % 2 == 0 { 0.3 } else { -0.3 }, 0.0))
+///     .collect();
 /// let p = chain_path(&c);
 /// assert_eq!(p[0], c[0]);
 /// assert_eq!(p[4], c[4]);
@@ -205,7 +207,7 @@ pub fn chain_path(centroids: &[DVec3]) -> Vec<DVec3> {
 /// point, so the chain contracts toward its end. Slider `s` scales it exactly. Front chain
 /// entries come first, then back chain entries.
 ///
-/// Regression: with the raw centroids (thesis: "toward the next element's centroid") the
+/// Regression: with the raw centroids (DESIGN.md: "toward the next element's centroid") the
 /// alternation of the centroids about the definer turned the contraction of the bundled faces'
 /// standard muscles 40–51° off their definers on average (mean cosine 0.63–0.77 per face),
 /// with 27 of 490 front steps backward; along the smoothed path the mean cosine is 0.83–0.95
