@@ -22,7 +22,7 @@ pub fn describe(path: &Path, mesh: &FaceMesh, rig: &FaceRig, model: Option<&Face
     if rig.face_triangle_count != mesh.triangles.len() {
         let _ = writeln!(
             s,
-            "  simulated on a simplified copy: {} vertices, {} triangles",
+            "  simulated on a reduced copy (rolled-in parts peeled, large faces simplified): {} vertices, {} triangles",
             rig.face_vertex_count, rig.face_triangle_count
         );
     }

@@ -33,6 +33,7 @@ pub mod large_face;
 pub mod open;
 mod pipeline;
 pub mod presets;
+pub mod rolled_in;
 mod solve;
 
 pub use atomic_write::{WriteError, write_atomic};

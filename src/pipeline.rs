@@ -20,6 +20,9 @@ pub struct PipelineParams {
     /// matters: with every boundary displacement- or zero-traction-prescribed, displacements
     /// do not depend on the shear modulus.
     pub poisson: f64,
+    /// Simulate without the eyelids and lips that roll in behind the eye and mouth contours
+    /// ([`crate::rolled_in`]); their vertices follow the nearest simulated point. Default true.
+    pub peel_rolled_in: bool,
     /// Simplification of faces too large for a dense solve.
     pub large_face: LargeFaceParams,
     /// Quadrature of the BEM's off-diagonal blocks (adaptive subdivision of near pairs).
@@ -38,6 +41,7 @@ impl Default for PipelineParams {
         PipelineParams {
             rig: RigParams::default(),
             poisson: 0.45,
+            peel_rolled_in: true,
             large_face: LargeFaceParams::default(),
             quadrature: bem_core::QuadratureParams::default(),
             muscles: None,
@@ -64,11 +68,10 @@ pub struct PrecomputeReport {
     /// Largest ratio, over the muscles, of the largest element displacement of a muscle's
     /// response to the largest displacement its pattern prescribes. A linear elastic body held
     /// by its skull stays near 1 (1.00 on MediaPipe, Lee Perry-Smith and the simplified
-    /// 2500-triangle ICT face, 3.8 on the simplified 13k ICT face, at default settings); far
+    /// 2500-triangle ICT face, 1.05 on the simplified 13k ICT face, at default settings); far
     /// above [`SUSPICIOUS_AMPLIFICATION`] the system is near-singular and the responses are not
     /// physical (e.g. front and back surfaces nearly coincident: MediaPipe with offset 0.0005
-    /// reaches 60; thin rolled eyelids and lips: the ICT faces at other simplification targets
-    /// or offsets, 8 to 740).
+    /// reaches 60; the ICT faces simulated with their rolled-in eyelids and lips, 3 to 1751).
     pub response_amplification: f64,
     /// Seconds spent in prep (simplification, rig).
     pub prep_seconds: f64,
@@ -79,7 +82,7 @@ pub struct PrecomputeReport {
 }
 
 /// [`PrecomputeReport::response_amplification`] above this flags a near-singular, unphysical
-/// solve (healthy rigs measured 1 to 3.8; broken ones 8 to 5000).
+/// solve (healthy rigs measured 1 to 3.2; broken ones 8 to 5000).
 pub const SUSPICIOUS_AMPLIFICATION: f64 = 5.0;
 
 impl PrecomputeReport {
@@ -118,10 +121,11 @@ impl PrecomputeReport {
     }
 }
 
-/// A large face's simplified copy and the map that carries its fields to the full mesh.
+/// The reduced copy of a face that was simulated (simplified, or with rolled-in parts
+/// peeled off, or both) and the map that carries its fields to the full mesh.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct SimplifiedFace {
-    /// The simplified front mesh (its vertices are a subset of the full mesh's).
+    /// The simulated front mesh (its vertices are a subset of the full mesh's).
     pub mesh: Simplified,
     /// Closest-point barycentric transfer to every full-mesh vertex.
     pub transfer: Transfer,
@@ -146,7 +150,8 @@ pub struct FaceModel {
     pub obj_source: Option<String>,
     /// The rig (canonical frame) the BEM was solved on: of the simplified mesh for a large face.
     pub rig: FaceRig,
-    /// For a large face: the simplified copy that was simulated.
+    /// The reduced copy that was simulated (rolled-in parts peeled off and/or simplified), if
+    /// it is not the whole input.
     pub simplified: Option<SimplifiedFace>,
     /// Per-muscle displacement of every vertex of [`FaceModel::mesh`] at slider = 1, user frame.
     pub basis: MuscleBasis,
@@ -200,26 +205,48 @@ impl FaceModel {
     }
 }
 
-/// The rig of a face as the pipeline simulates it, with the simplified copy for a large face.
+/// The rig of a face as the pipeline simulates it, with the reduced copy when it is not the
+/// whole input.
 #[derive(Clone, Debug)]
 pub struct PreparedRig {
-    /// The front mesh that is simulated (the input mesh, or its simplified copy).
+    /// The front mesh that is simulated (the input mesh, or its reduced copy).
     pub simulated: FaceMesh,
-    /// For a large face: the simplified copy, its vertices a subset of the input's.
+    /// The reduced copy (rolled-in parts peeled off, and/or simplified for a large face), its
+    /// vertices a subset of the input's; `None` when the whole input is simulated.
     pub simplified: Option<Simplified>,
     /// The rig of [`PreparedRig::simulated`] (with `params.muscles` if given).
     pub rig: FaceRig,
 }
 
-/// The prep step alone (fast, no BEM): simplification of a large face, rig, muscle override.
+/// The prep step alone (fast, no BEM): rolled-in parts peeled off, simplification of a large
+/// face, rig, muscle override.
 pub fn prepare(mesh: &FaceMesh, params: &PipelineParams) -> Result<PreparedRig, PipelineError> {
-    let large = mesh.triangles.len() > params.large_face.max_triangles;
-    let (simulated, simplified) = if large {
-        let s = crate::large_face::simplify(&mesh.vertices, &mesh.triangles, &params.large_face)?;
-        let sim_mesh = FaceMesh::from_triangles(&s.vertices, &s.triangles)?;
-        (sim_mesh, Some(s))
+    let whole = Simplified::whole(&mesh.vertices, &mesh.triangles);
+    let peeled = if params.peel_rolled_in {
+        crate::rolled_in::peel_rolled_in(&whole)
     } else {
-        (mesh.clone(), None)
+        None
+    };
+    let base = peeled.as_ref().unwrap_or(&whole);
+    let reduced = if base.triangles.len() > params.large_face.max_triangles {
+        let s = crate::large_face::simplify(&base.vertices, &base.triangles, &params.large_face)?;
+        Some(Simplified {
+            original_vertex: s
+                .original_vertex
+                .iter()
+                .map(|&v| base.original_vertex[v as usize])
+                .collect(),
+            ..s
+        })
+    } else {
+        peeled
+    };
+    let (simulated, simplified) = match reduced {
+        Some(s) => (
+            FaceMesh::from_triangles(&s.vertices, &s.triangles)?,
+            Some(s),
+        ),
+        None => (mesh.clone(), None),
     };
     let mut rig = match params.boxes {
         Some(boxes) => FaceRig::build_with_boxes(&simulated, &params.rig, boxes)?,
@@ -243,8 +270,10 @@ pub fn prep_rig(mesh: &FaceMesh, params: &PipelineParams) -> Result<FaceRig, Pip
 
 /// Builds the rig and the muscle basis of `mesh`.
 ///
-/// Large faces (more than `params.large_face.max_triangles` front triangles) are simulated on
-/// a border-locked simplified copy whose displacements are then carried to every vertex.
+/// Eyelids and lips rolled in behind their contours are peeled off the simulated surface
+/// (`params.peel_rolled_in`), and large faces (more than `params.large_face.max_triangles`
+/// front triangles) are simulated on a simplified copy; the displacements of such a reduced
+/// copy are then carried to every vertex.
 /// Progress of every stage goes to `control`; cancelling it stops the work at the next check
 /// (the LU factorisation itself runs to completion once started).
 pub fn build_face_model(
@@ -289,7 +318,7 @@ pub fn build_face_model(
     let (displacements, simplified) = match simplified {
         None => (sim_fields, None),
         Some(s) => {
-            // Fields on the simplified copy's vertices (through its own welding map).
+            // Fields on the reduced copy's vertices (through its own welding map).
             let on_copy: Vec<Vec<DVec3>> = sim_fields
                 .iter()
                 .map(|f| {

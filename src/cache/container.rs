@@ -18,8 +18,9 @@ use serde::de::DeserializeOwned;
 /// First bytes of every facebem cache file.
 pub const MAGIC: [u8; 8] = *b"FACEBEM\x1a";
 /// Version of the cache format; bumped whenever the payload's layout changes (3: the
-/// parameters gained `LargeFaceParams::normal_weight`).
-pub const FORMAT_VERSION: u32 = 3;
+/// parameters gained `LargeFaceParams::normal_weight`; 4: `border_spacing` and
+/// `PipelineParams::peel_rolled_in`).
+pub const FORMAT_VERSION: u32 = 4;
 /// Size of the fixed header in bytes.
 pub const HEADER_LEN: usize = 8 + 4 + 32 + 32 + 8 + 32;
 

@@ -211,7 +211,8 @@ pub fn chain_path(centroids: &[DVec3]) -> Vec<DVec3> {
 /// alternation of the centroids about the definer turned the contraction of the bundled faces'
 /// standard muscles 40–51° off their definers on average (mean cosine 0.63–0.77 per face),
 /// with 27 of 490 front steps backward; along the smoothed path the mean cosine is 0.83–0.95
-/// and 6 steps are backward.
+/// and 6 steps are backward (0.85–0.94 and 6 of 526 on the pipeline's peeled, simplified
+/// copies).
 pub fn muscle_pattern(shell: &Shell, muscle: &Muscle) -> Vec<(u32, DVec3)> {
     let mut out = Vec::with_capacity(muscle.front_chain.len() + muscle.back_chain.len());
     for chain in [&muscle.front_chain, &muscle.back_chain] {

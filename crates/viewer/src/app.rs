@@ -442,17 +442,23 @@ impl ViewerApp {
         if let Some(face) = &self.face {
             if let (Some(model), Some(geo)) = (&face.model, &face.rig_geometry) {
                 let edited = self.edited_boxes().and_then(Result::ok);
-                // The front shell vertices are the face's vertices in the same order, so
-                // unless the rig is on a simplified copy, overlays follow the pose.
-                let posed = self.posed.positions_f64();
-                let n = model.rig.face_vertex_count;
-                let posed_geo =
-                    (model.simplified.is_none() && posed.len() == n && n <= geo.vertices.len())
-                        .then(|| {
-                            let mut g = (**geo).clone();
-                            g.vertices[..n].copy_from_slice(posed);
-                            g
-                        });
+                // Overlays follow the pose: every shell vertex moves by its own response
+                // (the simulated surface's, also on a reduced copy), in the user's frame.
+                let response = &model.shell_vertex_response;
+                let posed_geo = (response.len() == self.sliders.len()
+                    && response.iter().all(|r| r.len() == geo.vertices.len()))
+                .then(|| {
+                    let linear = geo.input_from_canonical.matrix3;
+                    let mut g = (**geo).clone();
+                    for (k, &s) in self.sliders.iter().enumerate() {
+                        if s != 0.0 {
+                            for (p, u) in g.vertices.iter_mut().zip(&response[k]) {
+                                *p += linear * (s * *u);
+                            }
+                        }
+                    }
+                    g
+                });
                 lines = overlay_lines(
                     &model.rig,
                     posed_geo.as_ref().unwrap_or(geo),

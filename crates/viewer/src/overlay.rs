@@ -248,12 +248,25 @@ mod tests {
     #[test]
     fn overlays_of_the_default_rig_follow_the_options() {
         let (mesh, _) = facebem::open::read_face(&crate::source::default_face_path()).unwrap();
-        let rig = facebem::prep_rig(&mesh, &facebem::PipelineParams::default()).unwrap();
+        let prepared = facebem::prepare(&mesh, &facebem::PipelineParams::default()).unwrap();
+        let rig = prepared.rig;
         let geo = RigGeometry::new(&rig);
-        // Front shell vertices are the face's vertices, back in the user's frame.
-        for (p, q) in geo.vertices.iter().zip(&mesh.vertices) {
-            assert!((*p - *q).length() < 1e-9 * (1.0 + q.length()), "{p} vs {q}");
+        // Front shell vertices are the simulated face's vertices, back in the user's frame:
+        // each one a vertex of the input (the default face is simulated without its rolled-in
+        // mouth corners).
+        let copy = prepared
+            .simplified
+            .expect("the default face's mouth corners are peeled");
+        let mut checked = 0;
+        for (c, sim) in prepared.simulated.input_to_vertex.iter().enumerate() {
+            let (Some(sim), Some(&orig)) = (sim, copy.original_vertex.get(c)) else {
+                continue;
+            };
+            let (p, q) = (geo.vertices[*sim as usize], mesh.vertices[orig as usize]);
+            assert!((p - q).length() < 1e-9 * (1.0 + q.length()), "{p} vs {q}");
+            checked += 1;
         }
+        assert_eq!(checked, rig.face_vertex_count);
         let none = OverlayOptions {
             muscles: false,
             skull: false,

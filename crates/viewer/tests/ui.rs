@@ -191,7 +191,22 @@ fn first_run_computes_and_caches_the_default_rig_and_the_second_run_loads_it() {
         f64::from(largest) > 0.01 * model.rig.face_size,
         "overlay moved by {largest} only"
     );
-    let posed = model.pose(first.state().sliders()).unwrap();
+    // Posed shell vertices (user frame): each moves by its own response. The default face is
+    // simulated without its rolled-in mouth corners, so the shell's front vertices are a
+    // subset of the face's, and the response, not the face's pose, is what the overlay uses.
+    let input_from_canonical = model.rig.input_from_canonical();
+    let sliders = first.state().sliders().to_vec();
+    let posed: Vec<glam::DVec3> = (0..model.rig.shell.vertices.len())
+        .map(|v| {
+            let u: glam::DVec3 = sliders
+                .iter()
+                .zip(&model.shell_vertex_response)
+                .map(|(s, r)| *s * r[v])
+                .sum();
+            input_from_canonical.transform_point3(model.rig.shell.vertices[v])
+                + input_from_canonical.matrix3 * u
+        })
+        .collect();
     let zyg = model
         .rig
         .muscles
@@ -704,8 +719,9 @@ fn a_stale_or_corrupt_cache_file_is_recomputed_and_replaced() {
 
 /// A face whose shell crosses itself is rigged, but the user is told, in red, that responses
 /// there are unreliable — the count is the pipeline's own. The crossing shell: the ICT
-/// 2500-triangle face simplified by position only (`normal_weight` 0), which folds its rolled
-/// lips into a pleat at the right mouth corner (the default weights normals and is clean).
+/// 2500-triangle face with its rolled-in lips kept and simplified by position only with every
+/// border vertex locked, which folds the lips into a pleat at the right mouth corner (the
+/// defaults peel the lips, weight normals, resample the borders, and are clean).
 #[test]
 fn a_rig_with_intersecting_shell_elements_is_flagged() {
     let cache = tempfile::tempdir().unwrap();
@@ -726,7 +742,10 @@ fn a_rig_with_intersecting_shell_elements_is_flagged() {
     let clean = harness.state().model().expect("rig computed").clone();
     assert_eq!(clean.report.shell_self_intersections, 0);
     assert!(!harness.state().message().is_some_and(|m| m.is_error));
-    harness.state_mut().params_mut().large_face.normal_weight = 0.0;
+    let params = harness.state_mut().params_mut();
+    params.peel_rolled_in = false;
+    params.large_face.normal_weight = 0.0;
+    params.large_face.border_spacing = 0.0;
     harness.get_by_label("Rebuild rig").click();
     harness.run();
     common::wait_idle(&mut harness);
