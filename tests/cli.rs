@@ -292,3 +292,24 @@ fn rig_warns_about_a_near_singular_solve() {
         stdout(&info)
     );
 }
+
+/// `--keep-rolled-in` simulates the whole input (MediaPipe's rolled-in mouth corners
+/// included); by default they are peeled off the simulated copy.
+#[test]
+fn keep_rolled_in_simulates_the_whole_face() {
+    let dir = tempfile::tempdir().unwrap();
+    let face = support::asset(support::FACES[0]);
+    let (mesh, _) = facebem::open::read_face(&face).unwrap();
+    let rig = dir.path().join("whole.rig");
+    let out = facebem(&["rig", s(&face), "-o", s(&rig), "--keep-rolled-in"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let n = mesh.triangles.len();
+    assert!(
+        stdout(&out).contains(&format!("{n} front triangles ({n} simulated)")),
+        "{}",
+        stdout(&out)
+    );
+    let (_, peeled) = rigged();
+    let model = facebem::cache::load(peeled).unwrap();
+    assert!(model.report.simulated_triangles < n);
+}

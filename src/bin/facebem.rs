@@ -106,6 +106,10 @@ struct SolverArgs {
     /// Rim thickness of the shell, as a fraction of the face size.
     #[arg(long, default_value_t = RigParams::default().thickness)]
     thickness: f64,
+    /// Simulate eyelids and lips that roll in behind the eye and mouth contours too (by
+    /// default they are peeled off the simulated copy and follow the nearest simulated point).
+    #[arg(long)]
+    keep_rolled_in: bool,
 }
 
 fn main() -> ExitCode {
@@ -220,6 +224,7 @@ fn rig(face: &Path, output: &Path, muscles: Option<&Path>, solver: &SolverArgs) 
             ..RigParams::default()
         },
         poisson: solver.poisson,
+        peel_rolled_in: !solver.keep_rolled_in,
         large_face: LargeFaceParams {
             max_triangles: solver.max_triangles,
             target_triangles: solver.target_triangles,
