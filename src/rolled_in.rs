@@ -4,7 +4,7 @@
 //! Some scanned or artist-made faces (the ICT faces) continue the eyelids and lips past their
 //! visible edge and roll them inward, facing away from the viewer; the lips even press
 //! together. Offset into a shell, such a flap is tissue far thinner than an element, on which
-//! the constant-element BEM is close to singular: responses of 8–740 times the muscles' own
+//! the constant-element BEM is close to singular: responses of up to 1751 times the muscles' own
 //! motion on the ICT 13k face, depending on details of its simplified copy. [`peel_rolled_in`]
 //! removes those triangles from the simulated copy, so the knife edges sit at the visible lid
 //! and lip margins; the peeled vertices take the displacement of the nearest simulated point
