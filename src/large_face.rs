@@ -193,18 +193,24 @@ pub fn simplify(
         .flat_map(|n| n.as_vec3().to_array())
         .collect();
     let weight = params.normal_weight.max(0.0);
-    let (locks, options) = if params.border_spacing > 0.0 {
-        let spacing =
-            params.border_spacing * target_edge_length(vertices, triangles, target_triangles);
-        (
-            border_locks(vertices, triangles, spacing),
-            meshopt::SimplifyOptions::None,
-        )
-    } else {
-        (
+    // Resampled borders need the boundary loops; a mesh that is not a valid surface (no
+    // loops to walk) keeps every border vertex instead.
+    let loops = (params.border_spacing > 0.0)
+        .then(|| face_prep::topology::validate(vertices, triangles).ok())
+        .flatten();
+    let (locks, options) = match loops {
+        Some(loops) => {
+            let spacing =
+                params.border_spacing * target_edge_length(vertices, triangles, target_triangles);
+            (
+                border_locks(vertices, &loops, spacing),
+                meshopt::SimplifyOptions::None,
+            )
+        }
+        None => (
             vec![false; vertices.len()],
             meshopt::SimplifyOptions::LockBorder,
-        )
+        ),
     };
     let result = match meshopt::VertexDataAdapter::new(&bytes, 12, 0) {
         Ok(adapter) => meshopt::simplify_with_attributes_and_locks(
@@ -240,31 +246,15 @@ fn target_edge_length(vertices: &[DVec3], triangles: &[[u32; 3]], target: usize)
 }
 
 /// Border vertices to lock so that the contours keep a vertex about every `spacing` of arc
-/// length: on each boundary loop, the first vertex and then each vertex at least `spacing` of
-/// arc length after the last locked one (and at least half of it before the first).
-pub fn border_locks(vertices: &[DVec3], triangles: &[[u32; 3]], spacing: f64) -> Vec<bool> {
-    let directed: std::collections::HashSet<(u32, u32)> = triangles
-        .iter()
-        .flat_map(|t| (0..3).map(move |k| (t[k], t[(k + 1) % 3])))
-        .collect();
-    let mut next: std::collections::HashMap<u32, u32> = directed
-        .iter()
-        .filter(|&&(a, b)| !directed.contains(&(b, a)))
-        .copied()
-        .collect();
-    let mut starts: Vec<u32> = next.keys().copied().collect();
-    starts.sort_unstable();
+/// length: on each boundary loop (as [`face_prep::topology::validate`] returns them), its first
+/// vertex and then each vertex at least `spacing` of arc length after the last locked one
+/// (and at least half of it before the first).
+pub fn border_locks(vertices: &[DVec3], loops: &[Vec<u32>], spacing: f64) -> Vec<bool> {
     let mut locks = vec![false; vertices.len()];
-    for first in starts {
-        let mut lp = vec![];
-        let mut v = first;
-        while let Some(w) = next.remove(&v) {
-            lp.push(v);
-            v = w;
-        }
+    let p = |v: u32| vertices[v as usize];
+    for lp in loops {
         let Some(&start) = lp.first() else { continue };
         locks[start as usize] = true;
-        let p = |v: u32| vertices[v as usize];
         let mut since = 0.0;
         for w in lp.windows(2) {
             since += p(w[0]).distance(p(w[1]));
@@ -384,7 +374,8 @@ mod tests {
         let s = simplify(&vertices, &triangles, &params).unwrap();
         assert!(s.triangles.len() < 600, "{} triangles", s.triangles.len());
         let spacing = params.border_spacing * target_edge_length(&vertices, &triangles, 300);
-        let locks = border_locks(&vertices, &triangles, spacing);
+        let loops = face_prep::topology::validate(&vertices, &triangles).unwrap();
+        let locks = border_locks(&vertices, &loops, spacing);
         let kept: Vec<usize> = s.original_vertex.iter().map(|&v| v as usize).collect();
         let kept_border: Vec<usize> = kept.iter().copied().filter(|&v| on_border(v)).collect();
         assert!(
