@@ -26,6 +26,7 @@ pub use face_prep;
 mod atomic_write;
 mod basis;
 pub mod cache;
+pub mod contact_sheet;
 mod control;
 pub mod describe;
 pub mod export;

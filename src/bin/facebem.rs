@@ -6,6 +6,7 @@
 //! facebem pose face.rig --preset happy --set zygomaticus_major_l=-0.8 -o out.obj
 //! facebem export face.rig --gltf out.glb
 //! facebem muscles face.obj -o face.muscles
+//! facebem sheet face.rig -o sheet.png [--only muscles|presets]
 //! ```
 //!
 //! Errors print one line naming the problem and exit with status 1 (2 for usage errors).
@@ -87,6 +88,21 @@ enum Command {
         #[arg(short, long)]
         output: PathBuf,
     },
+    /// Render a contact sheet PNG: neutral, each muscle contracted, each preset; front and 3/4
+    /// view, coloured by displacement in mm.
+    Sheet(SheetArgs),
+}
+
+#[derive(Args)]
+struct SheetArgs {
+    /// Rig file (or a face mesh, which is then computed first).
+    rig: PathBuf,
+    /// Output PNG.
+    #[arg(short, long)]
+    output: PathBuf,
+    /// Only the muscles (with neutral) or only the presets.
+    #[arg(long, value_parser = ["muscles", "presets"])]
+    only: Option<String>,
 }
 
 #[derive(Args)]
@@ -168,6 +184,7 @@ fn run(cli: Cli) -> Result<()> {
             no_animation,
         } => export(&rig, &gltf, no_animation),
         Command::Muscles { face, output } => muscles(&face, &output),
+        Command::Sheet(args) => sheet(&args),
     }
 }
 
@@ -339,5 +356,40 @@ fn muscles(face: &Path, output: &Path) -> Result<()> {
     face_prep::muscle_file::save(output, &rig.muscles)
         .with_context(|| format!("cannot write {}", output.display()))?;
     println!("{}: {} muscles", output.display(), rig.muscles.len());
+    Ok(())
+}
+
+fn sheet(args: &SheetArgs) -> Result<()> {
+    use facebem::contact_sheet::{self, Selection, SheetOptions};
+    let model = model_from(&args.rig)?;
+    let selection = match args.only.as_deref() {
+        Some("muscles") => Selection::Muscles,
+        Some("presets") => Selection::Presets,
+        _ => Selection::All,
+    };
+    let cells = contact_sheet::standard_cells(&model, selection);
+    let name = args.rig.file_name().map_or_else(
+        || args.rig.display().to_string(),
+        |n| n.to_string_lossy().into_owned(),
+    );
+    let opts = SheetOptions::default();
+    let mm = opts
+        .mm_per_unit
+        .unwrap_or_else(|| contact_sheet::mm_per_unit(&model));
+    let opts = SheetOptions {
+        title: format!("{name}  ({mm} mm per unit)"),
+        ..opts
+    };
+    let start = std::time::Instant::now();
+    let image = contact_sheet::render(&model, &cells, &opts)?;
+    contact_sheet::write_png(&args.output, &image)?;
+    println!(
+        "{}: {} cells, {} x {} px, drawn and written in {:.2} s",
+        args.output.display(),
+        cells.len(),
+        image.width,
+        image.height,
+        start.elapsed().as_secs_f64()
+    );
     Ok(())
 }
