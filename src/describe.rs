@@ -26,6 +26,7 @@ pub fn describe(path: &Path, mesh: &FaceMesh, rig: &FaceRig, model: Option<&Face
             rig.face_vertex_count, rig.face_triangle_count
         );
     }
+    let _ = writeln!(s, "  {}", rig.unit_choice().describe());
     let count = |tag| rig.shell.tags.iter().filter(|t| **t == tag).count();
     let _ = writeln!(
         s,
@@ -77,7 +78,11 @@ pub fn describe(path: &Path, mesh: &FaceMesh, rig: &FaceRig, model: Option<&Face
         );
         if let Some(field) = model.and_then(|m| m.basis.displacements.get(k)) {
             let max = field.iter().map(|d| d.length()).fold(0.0, f64::max);
-            let _ = write!(s, ", max vertex displacement {max:.4}");
+            let _ = write!(
+                s,
+                ", max vertex displacement {:.2} mm",
+                max * rig.mm_per_unit()
+            );
         }
         s.push('\n');
     }

@@ -306,6 +306,74 @@ impl Transfer {
         Some(Transfer { samples })
     }
 
+    /// Re-targets the full-mesh vertices `hanging` (e.g. eyelids and lips peeled off the
+    /// simulated copy, [`crate::rolled_in`]) to the closest point of the copy's inner boundary
+    /// loops (its eye and mouth margins: every boundary loop but the longest, the outer
+    /// contour). A peeled flap hangs from that margin; the closest point of the whole surface
+    /// can lie on the other lip (seen on the ICT faces: the two mouth corners, mirror images,
+    /// followed points moving 4.8 and 10.8 mm). Vertices stay as they are when the copy has
+    /// no inner loop.
+    pub fn snap_to_margins(&mut self, full: &[DVec3], coarse: &Simplified, hanging: &[u32]) {
+        let Ok(loops) = face_prep::topology::validate(&coarse.vertices, &coarse.triangles) else {
+            return;
+        };
+        let Some(outer) = (0..loops.len()).max_by(|&a, &b| {
+            let pa = face_prep::orient::loop_perimeter(&coarse.vertices, &loops[a]);
+            let pb = face_prep::orient::loop_perimeter(&coarse.vertices, &loops[b]);
+            pa.total_cmp(&pb)
+        }) else {
+            return;
+        };
+        // Each margin edge with the triangle that holds it and the edge's corner slots in it.
+        let mut edge_owner = std::collections::HashMap::new();
+        for (t, tri) in coarse.triangles.iter().enumerate() {
+            for k in 0..3 {
+                let (a, b) = (tri[k], tri[(k + 1) % 3]);
+                edge_owner.insert((a.min(b), a.max(b)), (t as u32, k, (k + 1) % 3));
+            }
+        }
+        let mut edges = Vec::new();
+        for (i, lp) in loops.iter().enumerate() {
+            if i == outer {
+                continue;
+            }
+            for j in 0..lp.len() {
+                let (a, b) = (lp[j], lp[(j + 1) % lp.len()]);
+                if let Some(&(t, ka, kb)) = edge_owner.get(&(a.min(b), a.max(b))) {
+                    let tri = coarse.triangles[t as usize];
+                    let (ka, kb) = if tri[ka] == a { (ka, kb) } else { (kb, ka) };
+                    edges.push((a, b, t, ka, kb));
+                }
+            }
+        }
+        if edges.is_empty() {
+            return;
+        }
+        for &v in hanging {
+            let Some(&p) = full.get(v as usize) else {
+                continue;
+            };
+            let mut best = (f64::INFINITY, self.samples[v as usize]);
+            for &(a, b, t, ka, kb) in &edges {
+                let (pa, pb) = (coarse.vertices[a as usize], coarse.vertices[b as usize]);
+                let d = pb - pa;
+                let f = if d.length_squared() > 0.0 {
+                    ((p - pa).dot(d) / d.length_squared()).clamp(0.0, 1.0)
+                } else {
+                    0.0
+                };
+                let dist = (pa + d * f).distance_squared(p);
+                if dist < best.0 {
+                    let mut w = [0.0; 3];
+                    w[ka] = 1.0 - f;
+                    w[kb] = f;
+                    best = (dist, (t, w));
+                }
+            }
+            self.samples[v as usize] = best.1;
+        }
+    }
+
     /// Interpolates a per-vertex field of the simplified mesh onto the full mesh's vertices.
     /// `coarse_field` must have one value per simplified vertex.
     pub fn apply(&self, coarse: &Simplified, coarse_field: &[DVec3]) -> Vec<DVec3> {

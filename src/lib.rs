@@ -31,6 +31,7 @@ mod control;
 pub mod describe;
 pub mod export;
 pub mod large_face;
+pub mod measure;
 pub mod open;
 mod pipeline;
 pub mod presets;

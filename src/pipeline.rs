@@ -216,6 +216,9 @@ pub struct PreparedRig {
     pub simplified: Option<Simplified>,
     /// The rig of [`PreparedRig::simulated`] (with `params.muscles` if given).
     pub rig: FaceRig,
+    /// Input vertices peeled off with the rolled-in eyelids and lips (they follow the margin
+    /// they hang from, [`Transfer::snap_to_margins`]).
+    pub peeled_vertices: Vec<u32>,
 }
 
 /// The prep step alone (fast, no BEM): rolled-in parts peeled off, simplification of a large
@@ -226,6 +229,18 @@ pub fn prepare(mesh: &FaceMesh, params: &PipelineParams) -> Result<PreparedRig, 
         crate::rolled_in::peel_rolled_in(&whole)
     } else {
         None
+    };
+    let peeled_vertices: Vec<u32> = match &peeled {
+        Some(p) => {
+            let mut kept = vec![false; whole.vertices.len()];
+            for &v in &p.original_vertex {
+                kept[v as usize] = true;
+            }
+            (0..kept.len() as u32)
+                .filter(|&v| !kept[v as usize])
+                .collect()
+        }
+        None => Vec::new(),
     };
     let base = peeled.as_ref().unwrap_or(&whole);
     let reduced = if base.triangles.len() > params.large_face.max_triangles {
@@ -259,6 +274,7 @@ pub fn prepare(mesh: &FaceMesh, params: &PipelineParams) -> Result<PreparedRig, 
         simulated,
         simplified,
         rig,
+        peeled_vertices,
     })
 }
 
@@ -290,6 +306,7 @@ pub fn build_face_model(
         simulated,
         simplified,
         rig,
+        peeled_vertices,
     } = prepare(mesh, params)?;
     if rig.muscles.is_empty() {
         return Err(PipelineError::NoMuscles);
@@ -329,7 +346,11 @@ pub fn build_face_model(
                         .collect()
                 })
                 .collect();
-            let transfer = Transfer::build(&mesh.vertices, &s).ok_or(PipelineError::NoMuscles)?;
+            let mut transfer =
+                Transfer::build(&mesh.vertices, &s).ok_or(PipelineError::NoMuscles)?;
+            if rig.params.muscle_model == face_prep::muscle_model::MuscleModel::Anatomical {
+                transfer.snap_to_margins(&mesh.vertices, &s, &peeled_vertices);
+            }
             let fields = on_copy.iter().map(|f| transfer.apply(&s, f)).collect();
             (fields, Some(SimplifiedFace { mesh: s, transfer }))
         }

@@ -4,6 +4,7 @@ use std::sync::atomic::AtomicBool;
 
 use bem_core::{Material, QuadratureParams, ResponseBasis, SolveParams, SurfaceMesh};
 use face_prep::FaceRig;
+use face_prep::muscle_model::MuscleModel;
 use glam::DVec3;
 
 use crate::control::{Control, Stage};
@@ -81,9 +82,21 @@ pub(crate) fn solve_rig(
         .into_iter()
         .map(|s| s.displacement)
         .collect();
-    let vertex = element
+    let mut vertex: Vec<Vec<DVec3>> = element
         .iter()
         .map(|u| bem_core::element_to_vertex(&mesh, u))
         .collect::<Result<_, _>>()?;
+    if rig.params.muscle_model == MuscleModel::Anatomical {
+        // A vertex of a fixed (skull) element is on bone: the outer contour on the fixed rim,
+        // so a face's cut line stays put. (The thesis model keeps the plain element average,
+        // reproducing its basis bit for bit.)
+        for &e in &rig.skull {
+            for &v in &rig.shell.triangles[e as usize] {
+                for field in &mut vertex {
+                    field[v as usize] = DVec3::ZERO;
+                }
+            }
+        }
+    }
     Ok(Solved { element, vertex })
 }

@@ -126,6 +126,15 @@ struct SolverArgs {
     /// default they are peeled off the simulated copy and follow the nearest simulated point).
     #[arg(long)]
     keep_rolled_in: bool,
+    /// Length unit of the face mesh's coordinates: mm, cm, m, in, or auto (estimated from the
+    /// distance between the eyes, adult mean 63 mm; `info` says what was chosen).
+    #[arg(long, default_value = "auto", value_parser = parse_units)]
+    units: face_prep::units::Units,
+}
+
+fn parse_units(s: &str) -> Result<face_prep::units::Units, String> {
+    face_prep::units::Units::parse(s)
+        .ok_or_else(|| format!("unknown unit {s:?}: use mm, cm, m, in or auto"))
 }
 
 fn main() -> ExitCode {
@@ -238,6 +247,7 @@ fn rig(face: &Path, output: &Path, muscles: Option<&Path>, solver: &SolverArgs) 
         rig: RigParams {
             offset: solver.offset,
             thickness: solver.thickness,
+            units: solver.units,
             ..RigParams::default()
         },
         poisson: solver.poisson,

@@ -15,6 +15,7 @@
 //! assert!(!rig.muscles[zyg].front_chain.is_empty());
 //! ```
 
+pub mod anatomy;
 pub mod bvh;
 pub mod closest_point;
 mod error;
@@ -22,11 +23,13 @@ mod face_mesh;
 pub mod features;
 pub mod muscle_file;
 mod muscle_kind;
+pub mod muscle_model;
 pub mod muscles;
 pub mod orient;
 mod rig;
 pub mod shell;
 pub mod topology;
+pub mod units;
 
 pub use error::{LoopSummary, MuscleFileError, PrepError};
 pub use face_mesh::{FaceMesh, load_face, load_face_mesh_named};

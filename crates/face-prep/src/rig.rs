@@ -1,13 +1,17 @@
 //! The face rig: everything the BEM needs, built from one face mesh.
 
+use crate::anatomy::attachment;
+use crate::bvh::TriangleBvh;
 use crate::error::PrepError;
 use crate::face_mesh::FaceMesh;
 use crate::features::FeatureBoxes;
 use crate::muscle_kind::MuscleKind;
+use crate::muscle_model::{AnatomicalParams, MuscleModel, anatomical_pattern, place_band};
 use crate::muscles::{Muscle, muscle_pattern, place_standard_muscles, skull_elements};
-use crate::orient::{FaceLoops, canonical_frame};
+use crate::orient::{FaceLoops, canonical_frame, loop_centroid};
 use crate::shell::{ElementTag, Shell, ShellDims};
 use crate::topology;
+use crate::units::{LengthUnit, UnitChoice, Units};
 use glam::{DAffine3, DVec3};
 use serde::{Deserialize, Serialize};
 use std::collections::HashSet;
@@ -47,6 +51,13 @@ pub struct RigParams {
     /// on the others). The input [`FaceMesh`] is never modified; 0 disables the repair.
     /// Default 30.
     pub front_repair_rounds: usize,
+    /// The length unit of the mesh coordinates, or [`Units::Auto`] (default) to estimate it
+    /// from the distance between the eyes ([`crate::units`]).
+    pub units: Units,
+    /// How muscles become prescribed displacements ([`MuscleModel`]; default anatomical).
+    pub muscle_model: MuscleModel,
+    /// Parameters of the anatomical muscle model.
+    pub anatomical: AnatomicalParams,
 }
 
 impl Default for RigParams {
@@ -60,6 +71,9 @@ impl Default for RigParams {
             smoothing_iterations: 10,
             repair_rounds: 8,
             front_repair_rounds: 30,
+            units: Units::Auto,
+            muscle_model: MuscleModel::Thesis,
+            anatomical: AnatomicalParams::default(),
         }
     }
 }
@@ -114,6 +128,10 @@ pub struct FaceRig {
     pub params: RigParams,
     /// Face size (larger side of FBFace), the unit of the relative parameters.
     pub face_size: f64,
+    /// Length unit of the mesh coordinates (given, or detected: [`FaceRig::unit_detected`]).
+    pub unit: LengthUnit,
+    /// Whether [`FaceRig::unit`] was estimated from the face ([`Units::Auto`]).
+    pub unit_detected: bool,
     /// Number of face vertices (= first shell vertices).
     pub face_vertex_count: usize,
     /// Number of face triangles (= front elements, the first shell elements).
@@ -164,6 +182,7 @@ impl FaceRig {
             .collect();
         let auto = FeatureBoxes::from_loops(&verts, &loops)?;
         let face_size = auto.face.width().max(auto.face.height());
+        let units = UnitChoice::decide(params.units, interocular_distance(&verts, &loops));
         let boxes = match boxes {
             Some(b) => {
                 b.check()?;
@@ -189,6 +208,8 @@ impl FaceRig {
             canonical_from_input,
             params: *params,
             face_size,
+            unit: units.unit,
+            unit_detected: units.detected,
             face_vertex_count: face.vertices.len(),
             face_triangle_count: face.triangles.len(),
             loops,
@@ -216,8 +237,34 @@ impl FaceRig {
 
     fn place_muscles(&mut self) {
         self.skull = skull_elements(&self.shell, &self.boxes);
-        let spacing = self.params.ray_spacing * self.median_front_edge();
-        self.muscles = place_standard_muscles(&self.shell, &self.boxes, &self.skull, spacing);
+        self.muscles = match self.params.muscle_model {
+            MuscleModel::Thesis => {
+                let spacing = self.params.ray_spacing * self.median_front_edge();
+                place_standard_muscles(&self.shell, &self.boxes, &self.skull, spacing)
+            }
+            MuscleModel::Anatomical => {
+                let skull: HashSet<u32> = self.skull.iter().copied().collect();
+                MuscleKind::ALL
+                    .iter()
+                    .map(|&kind| {
+                        let att = attachment(kind, &self.boxes);
+                        let (front_chain, back_chain) = place_band(
+                            &self.shell,
+                            &skull,
+                            &att,
+                            self.mm_per_unit(),
+                            &self.params.anatomical,
+                        );
+                        Muscle {
+                            name: kind.display_name().to_owned(),
+                            kind: Some(kind),
+                            front_chain,
+                            back_chain,
+                        }
+                    })
+                    .collect()
+            }
+        };
     }
 
     /// The same rig with new feature boxes: the shell is kept; skull and the ten standard
@@ -271,6 +318,31 @@ impl FaceRig {
         Ok(self)
     }
 
+    /// The rig's length unit with how it was chosen and the distance between the eyes in mm.
+    ///
+    /// ```
+    /// use face_prep::{FaceRig, RigParams, load_face, units::LengthUnit};
+    /// let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+    ///     .join("../../assets/mediapipe_canonical_4loop.obj");
+    /// let rig = FaceRig::build(&load_face(&path).unwrap(), &RigParams::default()).unwrap();
+    /// let units = rig.unit_choice();
+    /// assert_eq!(units.unit, LengthUnit::Centimetre);
+    /// assert!(units.detected && units.plausible());
+    /// ```
+    pub fn unit_choice(&self) -> UnitChoice {
+        let interocular = interocular_distance(&self.shell.vertices, &self.loops);
+        UnitChoice {
+            unit: self.unit,
+            detected: self.unit_detected,
+            interocular_mm: interocular * self.unit.mm(),
+        }
+    }
+
+    /// Millimetres per unit of the mesh coordinates.
+    pub fn mm_per_unit(&self) -> f64 {
+        self.unit.mm()
+    }
+
     /// Inverse of [`FaceRig::canonical_from_input`]: canonical frame → user's input frame.
     pub fn input_from_canonical(&self) -> DAffine3 {
         self.canonical_from_input.inverse()
@@ -284,9 +356,50 @@ impl FaceRig {
     /// Prescribed per-element displacement of muscle `muscle_index` at slider = +1 (canonical
     /// frame; see [`crate::muscles::muscle_pattern`]). Empty if the index is out of range.
     pub fn muscle_pattern(&self, muscle_index: usize) -> Vec<(u32, DVec3)> {
-        self.muscles
-            .get(muscle_index)
-            .map(|m| muscle_pattern(&self.shell, m))
-            .unwrap_or_default()
+        let Some(m) = self.muscles.get(muscle_index) else {
+            return Vec::new();
+        };
+        match self.params.muscle_model {
+            MuscleModel::Thesis => muscle_pattern(&self.shell, m),
+            MuscleModel::Anatomical => anatomical_pattern(
+                &self.shell,
+                &self.shell_bvh(),
+                &self.boxes,
+                &self.contour_xy(),
+                m,
+                self.mm_per_unit(),
+                &self.params.anatomical,
+            ),
+        }
     }
+
+    /// Every muscle's prescribed pattern at slider = +1 ([`FaceRig::muscle_pattern`]).
+    pub fn muscle_patterns(&self) -> Vec<Vec<(u32, DVec3)>> {
+        (0..self.muscles.len())
+            .map(|k| self.muscle_pattern(k))
+            .collect()
+    }
+
+    /// The outer contour in the front plane (canonical x-y), in loop order.
+    pub fn contour_xy(&self) -> Vec<glam::DVec2> {
+        self.loops
+            .face
+            .iter()
+            .map(|&v| self.shell.vertices[v as usize].truncate())
+            .collect()
+    }
+
+    /// Bounding-volume hierarchy of the shell's elements (for ray casts).
+    pub fn shell_bvh(&self) -> TriangleBvh {
+        let tris: Vec<[DVec3; 3]> = (0..self.shell.element_count())
+            .map(|e| self.shell.corners(e))
+            .collect();
+        TriangleBvh::new(&tris)
+    }
+}
+
+/// Distance between the centres of the two eye loops (length-weighted loop centroids), in mesh
+/// units. `vertices` may be the face's or the shell's (the first shell vertices are the face's).
+fn interocular_distance(vertices: &[DVec3], loops: &FaceLoops) -> f64 {
+    loop_centroid(vertices, &loops.eye_l).distance(loop_centroid(vertices, &loops.eye_r))
 }

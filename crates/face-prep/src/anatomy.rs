@@ -1,0 +1,201 @@
+//! Anatomical attachments of the standard muscles, derived from the eyes and the mouth.
+//!
+//! Each muscle of the anatomical model ([`crate::muscle_model`]) runs from an **origin** on
+//! bone (fixed) to an **insertion** in the skin. Both are placed in the canonical front plane
+//! (x-y; +x is the face's own left) from the two eye boxes and the mouth box only, the
+//! features that are recognised reliably, never from the outer contour, so a contour that takes
+//! in ears, neck or scalp does not drag a muscle there. Distances are fractions of the
+//! interocular distance `iod` (eye-box centre to eye-box centre, 63 mm on an average adult) and
+//! of the eye-line-to-mouth height `h` (eye-box centre height to mouth-box centre height,
+//! about 70 mm), which scale with the face.
+//!
+//! Sources: Parke & Waters, *Computer Facial Animation* (2nd ed., 2008), ch. 3 (muscles of
+//! facial expression, origins and insertions) and ch. 8 (linear muscle vectors from bone to
+//! skin); Gray's Anatomy (41st ed.), ch. 29 (face and scalp); Standring's figures of the
+//! modiolus. The widths are the muscles' typical belly widths; the shortenings are set so the
+//! full contraction moves its insertion by the human motion-capture figures (Jorge Jr. et al.,
+//! Braz J Otorhinolaryngol 2012: smile mouth corner 9.3 ± 2.8 mm, brow raise 10.6 ± 2.5 mm) and
+//! the ICT-FaceKit captured shapes.
+
+use crate::features::FeatureBoxes;
+use crate::muscle_kind::{MuscleKind, Side};
+use glam::DVec2;
+
+/// Where and how big one muscle is, canonical frame (face units) and millimetres.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Attachment {
+    /// Bony origin, canonical x-y (fixed: prescribed displacement 0).
+    pub origin: DVec2,
+    /// Skin insertion, canonical x-y (largest prescribed displacement).
+    pub insertion: DVec2,
+    /// Half-width of the band of tissue the muscle drags, mm.
+    pub half_width_mm: f64,
+    /// Shortening at full contraction as a strain of the muscle's length (the insertion moves
+    /// by `max_strain × length` toward the origin).
+    pub max_strain: f64,
+}
+
+/// Feature measures the attachments are built from (canonical x-y).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Landmarks {
+    /// Centre of the face's left eye box (+x).
+    pub eye_l: DVec2,
+    /// Centre of the face's right eye box.
+    pub eye_r: DVec2,
+    /// Half the larger eye-box width.
+    pub eye_half_width: f64,
+    /// Top of the higher eye box.
+    pub eye_top: f64,
+    /// Centre of the mouth box.
+    pub mouth: DVec2,
+    /// Half the mouth-box width.
+    pub mouth_half_width: f64,
+    /// Top of the mouth box.
+    pub mouth_top: f64,
+    /// Bottom of the mouth box.
+    pub mouth_bottom: f64,
+    /// Interocular distance (eye-box centres).
+    pub iod: f64,
+    /// Eye line (mean eye-box centre height) minus mouth-centre height.
+    pub h: f64,
+}
+
+impl Landmarks {
+    /// Landmarks of the eye and mouth boxes.
+    ///
+    /// ```
+    /// use face_prep::{Box2, FeatureBoxes};
+    /// use face_prep::anatomy::Landmarks;
+    /// use glam::DVec2;
+    /// let b = |x0, y0, x1, y1| Box2::new(DVec2::new(x0, y0), DVec2::new(x1, y1));
+    /// let boxes = FeatureBoxes::derive(
+    ///     b(-8.0, -10.0, 8.0, 8.0),
+    ///     b(1.8, 1.0, 4.5, 2.0),
+    ///     b(-4.5, 1.0, -1.8, 2.0),
+    ///     b(-2.5, -5.5, 2.5, -4.5),
+    /// )
+    /// .unwrap();
+    /// let l = Landmarks::of(&boxes);
+    /// assert!((l.iod - 6.3).abs() < 1e-12);
+    /// assert!((l.h - 6.5).abs() < 1e-12);
+    /// ```
+    pub fn of(b: &FeatureBoxes) -> Landmarks {
+        let eye_l = b.eye_l.center();
+        let eye_r = b.eye_r.center();
+        let mouth = b.mouth.center();
+        Landmarks {
+            eye_l,
+            eye_r,
+            eye_half_width: 0.5 * b.eye_l.width().max(b.eye_r.width()),
+            eye_top: b.eye_l.max.y.max(b.eye_r.max.y),
+            mouth,
+            mouth_half_width: 0.5 * b.mouth.width(),
+            mouth_top: b.mouth.max.y,
+            mouth_bottom: b.mouth.min.y,
+            iod: eye_l.distance(eye_r),
+            h: 0.5 * (eye_l.y + eye_r.y) - mouth.y,
+        }
+    }
+}
+
+/// The attachment of a standard muscle (the face's left muscle is mirrored about the mouth's
+/// centre line for the right one, so a symmetric face gets symmetric muscles).
+///
+/// | muscle | origin (bone) | insertion (skin) |
+/// |---|---|---|
+/// | frontalis | galea aponeurotica, 0.95 iod above the eye centre | eyebrow skin, 0.3 iod above the eye centre |
+/// | levator labii superioris | infraorbital margin, below the eye's medial half | upper lip, above the mouth's lateral third |
+/// | zygomaticus major | zygomatic bone: lateral of the eye, 0.45 h below the eye line | modiolus, just lateral of the mouth corner |
+/// | mentalis | incisive fossa of the mandible, below the lower lip | chin skin (the muscle runs down; contracting raises the chin) |
+/// | depressor labii inferioris | oblique line of the mandible, below and lateral of the mouth | lower lip, lateral third |
+///
+/// ```
+/// use face_prep::{Box2, FeatureBoxes, MuscleKind};
+/// use face_prep::anatomy::attachment;
+/// use glam::DVec2;
+/// let b = |x0, y0, x1, y1| Box2::new(DVec2::new(x0, y0), DVec2::new(x1, y1));
+/// let boxes = FeatureBoxes::derive(
+///     b(-8.0, -10.0, 8.0, 8.0),
+///     b(1.8, 1.0, 4.5, 2.0),
+///     b(-4.5, 1.0, -1.8, 2.0),
+///     b(-2.5, -5.5, 2.5, -4.5),
+/// )
+/// .unwrap();
+/// let zl = attachment(MuscleKind::ZygomaticusMajorL, &boxes);
+/// let zr = attachment(MuscleKind::ZygomaticusMajorR, &boxes);
+/// // Runs up and out from the mouth corner; the right one is the mirror image.
+/// assert!(zl.origin.x > zl.insertion.x && zl.origin.y > zl.insertion.y);
+/// assert!((zl.origin.x + zr.origin.x).abs() < 1e-12);
+/// ```
+pub fn attachment(kind: MuscleKind, boxes: &FeatureBoxes) -> Attachment {
+    let l = Landmarks::of(boxes);
+    let left = left_attachment(kind, &l);
+    match kind.side() {
+        Side::Left => left,
+        Side::Right => {
+            let m = |p: DVec2| DVec2::new(2.0 * l.mouth.x - p.x, p.y);
+            Attachment {
+                origin: m(left.origin),
+                insertion: m(left.insertion),
+                ..left
+            }
+        }
+    }
+}
+
+/// The attachment of the face's-left twin of `kind`.
+fn left_attachment(kind: MuscleKind, l: &Landmarks) -> Attachment {
+    use MuscleKind::*;
+    // The left eye measured from the mouth's centre line, so left and right mirror exactly.
+    let half_iod = 0.5 * l.iod;
+    let eye_x = l.mouth.x + half_iod;
+    let eye_y = 0.5 * (l.eye_l.y + l.eye_r.y);
+    let corner = DVec2::new(l.mouth.x + l.mouth_half_width, l.mouth.y);
+    match kind {
+        FrontalisL | FrontalisR => Attachment {
+            origin: DVec2::new(eye_x, eye_y + 0.95 * l.iod),
+            insertion: DVec2::new(eye_x, eye_y + 0.2 * l.iod),
+            half_width_mm: 24.0,
+            max_strain: 0.35,
+        },
+        LevatorLabiiSuperiorisL | LevatorLabiiSuperiorisR => Attachment {
+            origin: DVec2::new(eye_x - 0.2 * l.iod, eye_y - 0.3 * l.h),
+            insertion: DVec2::new(
+                l.mouth.x + 0.45 * l.mouth_half_width,
+                l.mouth_top + 0.1 * l.iod,
+            ),
+            half_width_mm: 7.0,
+            max_strain: 0.15,
+        },
+        ZygomaticusMajorL | ZygomaticusMajorR => Attachment {
+            origin: DVec2::new(eye_x + l.eye_half_width + 0.2 * l.iod, eye_y - 0.45 * l.h),
+            insertion: corner + DVec2::new(0.03 * l.iod, 0.0),
+            half_width_mm: 8.0,
+            max_strain: 0.22,
+        },
+        MentalisL | MentalisR => Attachment {
+            origin: DVec2::new(
+                l.mouth.x + 0.2 * l.mouth_half_width,
+                l.mouth_bottom - 0.12 * l.h,
+            ),
+            insertion: DVec2::new(
+                l.mouth.x + 0.2 * l.mouth_half_width,
+                l.mouth_bottom - 0.42 * l.h,
+            ),
+            half_width_mm: 7.0,
+            max_strain: 0.2,
+        },
+        DepressorLabiiInferiorisL | DepressorLabiiInferiorisR => Attachment {
+            origin: DVec2::new(
+                l.mouth.x + 0.9 * l.mouth_half_width,
+                l.mouth_bottom - 0.45 * l.h,
+            ),
+            insertion: DVec2::new(
+                l.mouth.x + 0.4 * l.mouth_half_width,
+                l.mouth_bottom - 0.05 * l.iod,
+            ),
+            half_width_mm: 7.0,
+            max_strain: 0.15,
+        },
+    }
+}

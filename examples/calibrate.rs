@@ -1,0 +1,250 @@
+//! Measures every muscle and preset of the bundled faces in millimetres against human motion
+//! and the captured ICT expressions.
+//!
+//! ```text
+//! cargo run --release --example calibrate [-- --thesis] [-- face.obj ...]
+//! ```
+
+use std::path::{Path, PathBuf};
+
+use face_prep::muscle_model::MuscleModel;
+use facebem::measure::{FaceLandmarks, cosine, elevation_deg, flipped_triangles, max_length};
+use facebem::{Control, FaceModel, PipelineParams, build_face_model, presets};
+use glam::DVec3;
+
+fn main() -> anyhow::Result<()> {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let thesis = args.iter().any(|a| a == "--thesis");
+    let mut faces: Vec<PathBuf> = args
+        .iter()
+        .filter(|a| !a.starts_with("--"))
+        .map(PathBuf::from)
+        .collect();
+    if faces.is_empty() {
+        faces = [
+            "mediapipe_canonical_4loop.obj",
+            "ict_narrow_face_dec2500_4loop.obj",
+            "leeperrysmith_face_open_4loop.obj",
+            "ict_narrow_face_4loop.obj",
+        ]
+        .iter()
+        .map(|f| root.join("assets").join(f))
+        .collect();
+    }
+    let mut params = PipelineParams::default();
+    if thesis {
+        params.rig.muscle_model = MuscleModel::Thesis;
+    }
+    for face in &faces {
+        let mesh = face_prep::load_face(face)?;
+        let t0 = std::time::Instant::now();
+        let model = build_face_model(&mesh, &params, &Control::new())?;
+        println!(
+            "\n== {} ({:.1} s, {})",
+            face.file_name().and_then(|n| n.to_str()).unwrap_or("?"),
+            t0.elapsed().as_secs_f64(),
+            model.rig.unit_choice().describe()
+        );
+        report(&model)?;
+        if face.ends_with("ict_narrow_face_4loop.obj") {
+            calibration(&model, &root.join("tests/data/calibration"))?;
+        }
+    }
+    Ok(())
+}
+
+fn report(model: &FaceModel) -> anyhow::Result<()> {
+    let lm = FaceLandmarks::of(model).ok_or_else(|| anyhow::anyhow!("no landmarks"))?;
+    let n_tris = model.mesh.triangles.len();
+    let mm = lm.mm_per_unit;
+    let c = |i: u32| {
+        lm.canonical_from_input
+            .transform_point3(model.mesh.vertices[i as usize])
+            * mm
+    };
+    println!(
+        "corner L at {:.1?}, R at {:.1?}; rig mouth box {:.1?}..{:.1?}; brow L at {:.1?}",
+        c(lm.mouth_corner_l),
+        c(lm.mouth_corner_r),
+        model.rig.boxes.mouth.min * mm,
+        model.rig.boxes.mouth.max * mm,
+        c(lm.brow_l)
+    );
+    for m in &model.rig.muscles {
+        if let Some(k) = m.kind {
+            let a = face_prep::anatomy::attachment(k, &model.rig.boxes);
+            println!(
+                "  {:<30} origin {:>6.1?} insertion {:>6.1?} front {:>3} back {:>3}",
+                k.id(),
+                a.origin * mm,
+                a.insertion * mm,
+                m.front_chain.len(),
+                m.back_chain.len()
+            );
+        }
+    }
+    println!(
+        "{:<30} {:>7} {:>22} {:>7} {:>14} {:>14} {:>8} {:>6}",
+        "muscle (full contraction)",
+        "max mm",
+        "max at (canon mm)",
+        "cornL",
+        "cornL ∠",
+        "cornR/∠",
+        "contour",
+        "flips"
+    );
+    for (k, id) in model.muscle_ids().iter().enumerate() {
+        let field: Vec<DVec3> = model.basis.displacements[k].iter().map(|d| -*d).collect();
+        row(model, &lm, id, &field, n_tris);
+    }
+    for p in presets::ALL.iter().skip(1) {
+        let sliders = p.sliders_for(model.muscle_ids());
+        let posed = model.pose(&sliders)?;
+        let field: Vec<DVec3> = posed
+            .iter()
+            .zip(&model.mesh.vertices)
+            .map(|(a, b)| *a - *b)
+            .collect();
+        row(model, &lm, &format!("preset {}", p.name), &field, n_tris);
+    }
+    // Symmetry: left response vs mirrored right response at the landmarks.
+    let mirror = |d: DVec3| DVec3::new(-d.x, d.y, d.z);
+    let pairs = [
+        ("zygomaticus_major", lm.mouth_corner_l, lm.mouth_corner_r),
+        ("frontalis", lm.brow_l, lm.brow_r),
+    ];
+    for (name, vl, vr) in pairs {
+        let (Some(kl), Some(kr)) = (
+            model
+                .muscle_ids()
+                .iter()
+                .position(|m| m == &format!("{name}_l")),
+            model
+                .muscle_ids()
+                .iter()
+                .position(|m| m == &format!("{name}_r")),
+        ) else {
+            continue;
+        };
+        let dl = lm.canonical_mm(model.basis.displacements[kl][vl as usize]);
+        let dr = lm.canonical_mm(model.basis.displacements[kr][vr as usize]);
+        println!(
+            "symmetry {name}: |L − mirror(R)| = {:.2} mm",
+            (dl - mirror(dr)).length()
+        );
+    }
+    Ok(())
+}
+
+fn row(model: &FaceModel, lm: &FaceLandmarks, label: &str, field: &[DVec3], n_tris: usize) {
+    let (imax, max) = field
+        .iter()
+        .enumerate()
+        .map(|(i, d)| (i, d.length()))
+        .fold((0, 0.0), |a, b| if b.1 > a.1 { b } else { a });
+    let at = lm
+        .canonical_from_input
+        .transform_point3(model.mesh.vertices[imax])
+        * lm.mm_per_unit;
+    let cl = lm.canonical_mm(field[lm.mouth_corner_l as usize]);
+    let cr = lm.canonical_mm(field[lm.mouth_corner_r as usize]);
+    let bl = lm.canonical_mm(field[lm.brow_l as usize]);
+    let posed: Vec<DVec3> = model
+        .mesh
+        .vertices
+        .iter()
+        .zip(field)
+        .map(|(a, b)| *a + *b)
+        .collect();
+    let flips = flipped_triangles(&model.mesh.vertices, &posed, &model.mesh.triangles).len();
+    println!(
+        "{label:<30} {:>7.2} ({:>6.1},{:>6.1},{:>6.1}) {:>7.2} {:>6.1}° {:>5.2}/{:>5.1}° {:>8.3} {:>6}  browL up {:.2}",
+        max * lm.mm_per_unit,
+        at.x,
+        at.y,
+        at.z,
+        cl.length(),
+        elevation_deg(cl, 1.0),
+        cr.length(),
+        elevation_deg(cr, -1.0),
+        lm.contour_motion_mm(field),
+        flips,
+        bl.y
+    );
+    let _ = (n_tris, max_length(field));
+}
+
+fn calibration(model: &FaceModel, dir: &Path) -> anyhow::Result<()> {
+    let captured = |name: &str| -> anyhow::Result<Vec<DVec3>> {
+        let m = face_prep::load_face(&dir.join(format!("ict_narrow_face_{name}.obj")))?;
+        Ok(m.vertices
+            .iter()
+            .zip(&model.mesh.vertices)
+            .map(|(a, b)| *a - *b)
+            .collect())
+    };
+    let response = |id: &str| -> Option<Vec<DVec3>> {
+        let k = model.muscle_ids().iter().position(|m| m == id)?;
+        Some(model.basis.displacements[k].iter().map(|d| -*d).collect())
+    };
+    let sum =
+        |a: Vec<DVec3>, b: Vec<DVec3>| a.iter().zip(&b).map(|(x, y)| *x + *y).collect::<Vec<_>>();
+    let lm = FaceLandmarks::of(model).ok_or_else(|| anyhow::anyhow!("no landmarks"))?;
+    let pairs: [(&str, Vec<DVec3>); 5] = [
+        ("mouthSmile_L", captured("mouthSmile_L")?),
+        ("mouthSmile_R", captured("mouthSmile_R")?),
+        (
+            "browUp_L (inner+outer)",
+            sum(captured("browInnerUp_L")?, captured("browOuterUp_L")?),
+        ),
+        (
+            "browUp_R (inner+outer)",
+            sum(captured("browInnerUp_R")?, captured("browOuterUp_R")?),
+        ),
+        ("jawOpen", captured("jawOpen")?),
+    ];
+    println!("calibration against captured ICT shapes (cosine of whole fields):");
+    for (name, c) in &pairs {
+        let mut line = format!("  {name:<24}");
+        for id in model.muscle_ids() {
+            if let Some(r) = response(id) {
+                line.push_str(&format!(" {}={:+.2}", short(id), cosine(&r, c)));
+            }
+        }
+        println!("{line}");
+    }
+    for (id, name, v) in [
+        ("zygomaticus_major_l", "mouthSmile_L", lm.mouth_corner_l),
+        ("zygomaticus_major_r", "mouthSmile_R", lm.mouth_corner_r),
+        ("frontalis_l", "browUp_L (inner+outer)", lm.brow_l),
+        ("frontalis_r", "browUp_R (inner+outer)", lm.brow_r),
+    ] {
+        let (Some(r), Some((_, c))) = (response(id), pairs.iter().find(|p| p.0 == name)) else {
+            continue;
+        };
+        let ratio = r[v as usize].length() / c[v as usize].length().max(1e-12);
+        let side = if id.ends_with("_l") { 1.0 } else { -1.0 };
+        println!(
+            "  captured {name} at the landmark: {:.2} mm at {:.1}° (rig: {:.1}°)",
+            c[v as usize].length() * lm.mm_per_unit,
+            elevation_deg(lm.canonical_mm(c[v as usize]), side),
+            elevation_deg(lm.canonical_mm(r[v as usize]), side)
+        );
+        println!(
+            "  {id} vs {name}: cosine {:.3}, landmark magnitude ratio {:.2} ({:.2} vs {:.2} mm)",
+            cosine(&r, c),
+            ratio,
+            r[v as usize].length() * lm.mm_per_unit,
+            c[v as usize].length() * lm.mm_per_unit
+        );
+    }
+    Ok(())
+}
+
+fn short(id: &str) -> String {
+    id.split('_')
+        .map(|w| w.chars().next().unwrap_or('?'))
+        .collect()
+}

@@ -1,0 +1,160 @@
+//! Measuring expressions in millimetres: landmarks of the user's face (mouth corners, brows,
+//! outer contour), displacements at them, flipped triangles and the similarity of two
+//! displacement fields. Used by the tests that hold the muscle model to human motion, the
+//! `calibrate` example and the contact sheet.
+
+use face_prep::FaceMesh;
+use face_prep::orient::{FaceLoops, canonical_frame, loop_centroid};
+use glam::{DAffine3, DVec3};
+
+use crate::FaceModel;
+
+/// Landmarks of a face, as indices of its own (welded) vertices.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FaceLandmarks {
+    /// The input → canonical transform the landmarks were measured in (the rig's).
+    pub canonical_from_input: DAffine3,
+    /// The four loops of the input mesh.
+    pub loops: FaceLoops,
+    /// Mouth-loop vertex of largest canonical x (the face's left corner).
+    pub mouth_corner_l: u32,
+    /// Mouth-loop vertex of smallest canonical x.
+    pub mouth_corner_r: u32,
+    /// Brow point above the left eye: the front vertex nearest, in the front plane, to the eye
+    /// loop's centre x at [`BROW_ABOVE_EYE_TOP_IOD`] interocular distances above the eye loop's top.
+    pub brow_l: u32,
+    /// The same above the right eye.
+    pub brow_r: u32,
+    /// Millimetres per mesh unit (the rig's unit).
+    pub mm_per_unit: f64,
+}
+
+/// Height of the brow landmark above the eye loop's top, in interocular distances (0.25 iod ≈
+/// 16 mm on an adult: the middle of the eyebrow).
+pub const BROW_ABOVE_EYE_TOP_IOD: f64 = 0.25;
+
+impl FaceLandmarks {
+    /// Landmarks of `model`'s input mesh, measured in its rig's canonical frame and unit.
+    /// `None` when the mesh does not have four loops (it always has for a computed model).
+    pub fn of(model: &FaceModel) -> Option<FaceLandmarks> {
+        FaceLandmarks::of_mesh(
+            &model.mesh,
+            model.rig.canonical_from_input,
+            model.rig.mm_per_unit(),
+        )
+    }
+
+    /// Landmarks of a mesh in the given canonical frame.
+    pub fn of_mesh(
+        mesh: &FaceMesh,
+        canonical_from_input: DAffine3,
+        mm_per_unit: f64,
+    ) -> Option<FaceLandmarks> {
+        let loops = face_prep::topology::validate(&mesh.vertices, &mesh.triangles).ok()?;
+        if loops.len() != 4 {
+            return None;
+        }
+        let (_, loops) = canonical_frame(&mesh.vertices, &mesh.triangles, &loops).ok()?;
+        let c: Vec<DVec3> = mesh
+            .vertices
+            .iter()
+            .map(|&p| canonical_from_input.transform_point3(p))
+            .collect();
+        let extreme = |lp: &[u32], sign: f64| {
+            lp.iter()
+                .copied()
+                .max_by(|&a, &b| (sign * c[a as usize].x).total_cmp(&(sign * c[b as usize].x)))
+        };
+        let mouth_corner_l = extreme(&loops.mouth, 1.0)?;
+        let mouth_corner_r = extreme(&loops.mouth, -1.0)?;
+        let eye_l = loop_centroid(&c, &loops.eye_l);
+        let eye_r = loop_centroid(&c, &loops.eye_r);
+        let iod = eye_l.truncate().distance(eye_r.truncate());
+        let top = |lp: &[u32]| lp.iter().map(|&i| c[i as usize].y).fold(f64::MIN, f64::max);
+        let nearest = |x: f64, y: f64| {
+            (0..c.len() as u32).min_by(|&a, &b| {
+                let d = |i: u32| (c[i as usize].x - x).powi(2) + (c[i as usize].y - y).powi(2);
+                d(a).total_cmp(&d(b))
+            })
+        };
+        let brow_l = nearest(eye_l.x, top(&loops.eye_l) + BROW_ABOVE_EYE_TOP_IOD * iod)?;
+        let brow_r = nearest(eye_r.x, top(&loops.eye_r) + BROW_ABOVE_EYE_TOP_IOD * iod)?;
+        Some(FaceLandmarks {
+            canonical_from_input,
+            loops,
+            mouth_corner_l,
+            mouth_corner_r,
+            brow_l,
+            brow_r,
+            mm_per_unit,
+        })
+    }
+
+    /// A displacement of the input frame, in the canonical frame and in mm.
+    pub fn canonical_mm(&self, d: DVec3) -> DVec3 {
+        self.canonical_from_input.transform_vector3(d) * self.mm_per_unit
+    }
+
+    /// Largest displacement, mm, of any vertex of the outer contour.
+    pub fn contour_motion_mm(&self, field: &[DVec3]) -> f64 {
+        self.loops
+            .face
+            .iter()
+            .filter_map(|&i| field.get(i as usize))
+            .map(|d| d.length() * self.mm_per_unit)
+            .fold(0.0, f64::max)
+    }
+}
+
+/// Elevation in degrees above the horizontal of a canonical displacement `d` in the front
+/// plane (x-y), with `lateral_sign` = +1 for the face's left (+x): 90° straight up, 0° straight
+/// out, negative downward.
+///
+/// ```
+/// use glam::DVec3;
+/// let up_and_out = facebem::measure::elevation_deg(DVec3::new(-1.0, 1.0, 0.3), -1.0);
+/// assert!((up_and_out - 45.0).abs() < 1e-9);
+/// ```
+pub fn elevation_deg(d: DVec3, lateral_sign: f64) -> f64 {
+    d.y.atan2(lateral_sign * d.x).to_degrees()
+}
+
+/// Largest vertex displacement of a field (in the field's units).
+pub fn max_length(field: &[DVec3]) -> f64 {
+    field.iter().map(|d| d.length()).fold(0.0, f64::max)
+}
+
+/// Cosine similarity of two displacement fields over the same vertices: `a·b / (|a| |b|)`
+/// (1 = same shape, whatever the scale; 0 when either is zero).
+///
+/// ```
+/// use glam::DVec3;
+/// let a = [DVec3::X, DVec3::Y];
+/// let b = [DVec3::X * 2.0, DVec3::Y * 2.0];
+/// assert!((facebem::measure::cosine(&a, &b) - 1.0).abs() < 1e-12);
+/// ```
+pub fn cosine(a: &[DVec3], b: &[DVec3]) -> f64 {
+    let dot: f64 = a.iter().zip(b).map(|(x, y)| x.dot(*y)).sum();
+    let na: f64 = a.iter().map(|x| x.length_squared()).sum::<f64>().sqrt();
+    let nb: f64 = b.iter().map(|x| x.length_squared()).sum::<f64>().sqrt();
+    if na > 0.0 && nb > 0.0 {
+        dot / (na * nb)
+    } else {
+        0.0
+    }
+}
+
+/// Triangles whose normal reverses between `neutral` and `posed` (the dot product of the two
+/// normals is negative): folded skin or an inverted element.
+pub fn flipped_triangles(neutral: &[DVec3], posed: &[DVec3], triangles: &[[u32; 3]]) -> Vec<u32> {
+    let normal = |p: &[DVec3], t: &[u32; 3]| {
+        let [a, b, c] = t.map(|i| p[i as usize]);
+        (b - a).cross(c - a)
+    };
+    triangles
+        .iter()
+        .enumerate()
+        .filter(|(_, t)| normal(neutral, t).dot(normal(posed, t)) < 0.0)
+        .map(|(i, _)| i as u32)
+        .collect()
+}
