@@ -19,23 +19,97 @@ impl fmt::Display for LoopSummary {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(
             f,
-            "{} edges, bbox ({:.4}, {:.4}, {:.4})..({:.4}, {:.4}, {:.4})",
-            self.size, self.min.x, self.min.y, self.min.z, self.max.x, self.max.y, self.max.z
+            "{} edges, bbox {}..{}",
+            self.size,
+            fmt_p(&self.min),
+            fmt_p(&self.max)
         )
     }
 }
 
 fn list_loops(loops: &[LoopSummary]) -> String {
-    loops
+    let shown: Vec<String> = loops
         .iter()
+        .take(LIST_CAP)
         .enumerate()
         .map(|(i, l)| format!("loop {i}: {l}"))
-        .collect::<Vec<_>>()
-        .join("; ")
+        .collect();
+    let more = loops.len().saturating_sub(LIST_CAP);
+    if loops.is_empty() {
+        return String::new();
+    }
+    let mut s = format!(": {}", shown.join("; "));
+    if more > 0 {
+        s.push_str(&format!("; and {more} more"));
+    }
+    s
 }
 
-fn fmt_p(p: &DVec3) -> String {
-    format!("({:.6}, {:.6}, {:.6})", p.x, p.y, p.z)
+/// Lists in messages show at most this many items, then "and N more".
+pub const LIST_CAP: usize = 10;
+
+/// `[a, b, …]` with at most [`LIST_CAP`] items, then "and N more".
+///
+/// ```
+/// use face_prep::error::capped_list;
+/// assert_eq!(capped_list(&[1, 2]), "[1, 2]");
+/// assert_eq!(capped_list(&(0..25).collect::<Vec<_>>()), "[0, 1, 2, 3, 4, 5, 6, 7, 8, 9, and 15 more]");
+/// ```
+pub fn capped_list<T: fmt::Debug>(items: &[T]) -> String {
+    let mut s = String::from("[");
+    for (i, x) in items.iter().take(LIST_CAP).enumerate() {
+        if i > 0 {
+            s.push_str(", ");
+        }
+        s.push_str(&format!("{x:?}"));
+    }
+    if items.len() > LIST_CAP {
+        s.push_str(&format!(", and {} more", items.len() - LIST_CAP));
+    }
+    s.push(']');
+    s
+}
+
+/// A file's text shortened for a message (at most 80 characters, quoted).
+pub fn short_text(text: &str) -> String {
+    const MAX: usize = 80;
+    let mut s: String = text.chars().take(MAX).collect();
+    if text.chars().nth(MAX).is_some() {
+        s.push('…');
+    }
+    format!("{s:?}")
+}
+
+/// A number to 6 significant digits (plain notation between 1e-4 and 1e6, scientific outside),
+/// so messages never echo a file's bytes at full precision.
+///
+/// ```
+/// use face_prep::error::sig6;
+/// assert_eq!(sig6(12.345678901), "12.3457");
+/// assert_eq!(sig6(-0.5), "-0.5");
+/// assert_eq!(sig6(1e300), "1.00000e300");
+/// assert_eq!(sig6(f64::NAN), "NaN");
+/// ```
+pub fn sig6(x: f64) -> String {
+    if !x.is_finite() || x == 0.0 {
+        return format!("{x}");
+    }
+    let a = x.abs();
+    if !(1e-4..1e6).contains(&a) {
+        return format!("{x:.5e}");
+    }
+    let decimals = (5 - a.log10().floor() as i32).max(0) as usize;
+    let s = format!("{x:.decimals$}");
+    if s.contains('.') {
+        s.trim_end_matches('0').trim_end_matches('.').to_owned()
+    } else {
+        s
+    }
+}
+
+/// A point to 6 significant digits per coordinate.
+pub fn fmt_p(p: &DVec3) -> String {
+    format!("({}, {}, {})", sig6(p.x), sig6(p.y), sig6(p.z))
 }
 
 /// Everything that can go wrong turning a face mesh into a rig.
@@ -63,14 +137,34 @@ pub enum PrepError {
         /// tobj's description of the problem.
         reason: String,
     },
-    /// The gltf crate rejected the file.
+    /// The glTF/GLB document is malformed, or a buffer cannot be read safely.
     #[error("glTF error: {0}")]
-    Gltf(#[from] gltf::Error),
+    Gltf(#[from] crate::gltf_read::GltfError),
+    /// The input path is not a regular file (a folder, FIFO or device is not opened).
+    #[error("{path} is not a regular file")]
+    NotAFile {
+        /// The path.
+        path: PathBuf,
+    },
+    /// An input exceeds an [`crate::InputLimits`] limit.
+    #[error("input too large: {count} {what}, the limit is {limit}")]
+    TooLarge {
+        /// What was counted (`file bytes`, `positions`, `triangles`, `muscles`).
+        what: &'static str,
+        /// The count found or declared.
+        count: u64,
+        /// The limit.
+        limit: u64,
+    },
     /// The glTF document has no mesh at all.
     #[error("the glTF file contains no mesh")]
     GltfNoMesh,
     /// No mesh of the requested name.
-    #[error("no glTF mesh named {name:?} (meshes present: {available:?})")]
+    #[error(
+        "no glTF mesh named {} (meshes present: {})",
+        short_text(name),
+        capped_list(available)
+    )]
     GltfMeshNotFound {
         /// Requested name.
         name: String,
@@ -103,8 +197,20 @@ pub enum PrepError {
         vertex_count: usize,
     },
     /// A used vertex has a NaN or infinite coordinate.
-    #[error("input position {input_index} is not finite: {position:?}")]
+    #[error("input position {input_index} is not finite: {}", fmt_p(&DVec3::from(*position)))]
     NonFiniteVertex {
+        /// Index of the position in the input (OBJ `v` order, 0-based).
+        input_index: usize,
+        /// Its coordinates.
+        position: [f64; 3],
+    },
+    /// A vertex lies absurdly far from the origin (beyond [`crate::limits::MAX_COORDINATE`]).
+    #[error(
+        "input position {input_index} is absurdly far from the origin: {} (limit {:e} in any unit)",
+        fmt_p(&DVec3::from(*position)),
+        crate::limits::MAX_COORDINATE
+    )]
+    CoordinateTooLarge {
         /// Index of the position in the input (OBJ `v` order, 0-based).
         input_index: usize,
         /// Its coordinates.
@@ -123,7 +229,7 @@ pub enum PrepError {
         corners: [DVec3; 3],
     },
     /// An edge is shared by more than two triangles.
-    #[error("non-manifold edge {a}-{b} from {pa} to {pb}: shared by {} triangles {triangles:?}", triangles.len(), pa = fmt_p(pa), pb = fmt_p(pb))]
+    #[error("non-manifold edge {a}-{b} from {pa} to {pb}: shared by {} triangles {}", triangles.len(), capped_list(triangles), pa = fmt_p(pa), pb = fmt_p(pb))]
     NonManifoldEdge {
         /// First vertex.
         a: u32,
@@ -161,14 +267,14 @@ pub enum PrepError {
         outgoing: usize,
     },
     /// The mesh falls apart into several pieces.
-    #[error("the mesh has {} connected components (triangle counts {sizes:?}); expected one", sizes.len())]
+    #[error("the mesh has {} connected components (triangle counts {}); expected one", sizes.len(), capped_list(sizes))]
     MultipleComponents {
         /// Triangle count of every component, largest first.
         sizes: Vec<usize>,
     },
     /// Not exactly four boundary loops (face contour, two eyes, mouth).
     #[error(
-        "expected 4 boundary loops (face contour, 2 eyes, mouth), found {count}: {}",
+        "expected 4 boundary loops (face contour, 2 eyes, mouth), found {count}{}",
         list_loops(loops)
     )]
     WrongLoopCount {
@@ -194,7 +300,7 @@ pub enum PrepError {
         reason: &'static str,
     },
     /// A feature box is empty or not finite.
-    #[error("feature box {name} is invalid: min {min:?} max {max:?}")]
+    #[error("feature box {name} is invalid: min ({}, {}) max ({}, {})", sig6(min[0]), sig6(min[1]), sig6(max[0]), sig6(max[1]))]
     InvalidBox {
         /// Box name.
         name: &'static str,
@@ -230,7 +336,7 @@ pub enum MuscleFileError {
     #[error("muscle file I/O error: {0}")]
     Io(#[from] std::io::Error),
     /// A line that does not belong where it is.
-    #[error("line {line}: unexpected {text:?} ({expected})")]
+    #[error("line {line}: unexpected {} ({expected})", short_text(text))]
     Unexpected {
         /// Line number.
         line: usize,
@@ -240,7 +346,7 @@ pub enum MuscleFileError {
         expected: &'static str,
     },
     /// A number could not be parsed.
-    #[error("line {line}: {text:?} is not a non-negative integer")]
+    #[error("line {line}: {} is not a non-negative integer", short_text(text))]
     BadNumber {
         /// Line number.
         line: usize,
@@ -248,7 +354,10 @@ pub enum MuscleFileError {
         text: String,
     },
     /// The `[Size]` does not match the number of `[Data]` lines.
-    #[error("line {line}: muscle {muscle:?} declares {declared} elements but lists {found}")]
+    #[error(
+        "line {line}: muscle {} declares {declared} elements but lists {found}",
+        short_text(muscle)
+    )]
     SizeMismatch {
         /// Line of the block end.
         line: usize,
@@ -261,7 +370,8 @@ pub enum MuscleFileError {
     },
     /// An element index beyond the shell.
     #[error(
-        "line {line}: element {index} of muscle {muscle:?} is out of range (shell has {element_count} elements)"
+        "line {line}: element {index} of muscle {} is out of range (shell has {element_count} elements)",
+        short_text(muscle)
     )]
     IndexOutOfRange {
         /// Line number.
@@ -274,7 +384,10 @@ pub enum MuscleFileError {
         element_count: usize,
     },
     /// An element listed twice in one chain.
-    #[error("line {line}: element {index} appears twice in muscle {muscle:?}")]
+    #[error(
+        "line {line}: element {index} appears twice in muscle {}",
+        short_text(muscle)
+    )]
     DuplicateElement {
         /// Line number.
         line: usize,
@@ -284,7 +397,10 @@ pub enum MuscleFileError {
         index: u32,
     },
     /// The file ends inside a block.
-    #[error("line {line}: file ends inside muscle {muscle:?} (missing {missing})")]
+    #[error(
+        "line {line}: file ends inside muscle {} (missing {missing})",
+        short_text(muscle)
+    )]
     Truncated {
         /// Last line number.
         line: usize,
@@ -293,7 +409,15 @@ pub enum MuscleFileError {
         /// Missing block.
         missing: &'static str,
     },
+    /// More muscles than [`crate::InputLimits::max_muscles`].
+    #[error("line {line}: more than {limit} muscles (input limit)")]
+    TooManyMuscles {
+        /// Line of the first muscle over the limit.
+        line: usize,
+        /// The limit.
+        limit: usize,
+    },
     /// A muscle name that cannot be written (empty, or containing a line break or `[`).
-    #[error("muscle name {0:?} cannot be written (empty, multi-line or starting with '[')")]
+    #[error("muscle name {} cannot be written (empty, multi-line or starting with '[')", short_text(.0))]
     BadName(String),
 }

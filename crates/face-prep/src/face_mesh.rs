@@ -1,6 +1,8 @@
 //! The validated, welded input face mesh and its loaders (OBJ through tobj, glTF/GLB through gltf).
 
 use crate::error::PrepError;
+use crate::gltf_read::{self, Document};
+use crate::limits::{InputLimits, MAX_COORDINATE, read_input_file};
 use crate::topology;
 use glam::{DMat4, DVec3};
 use serde::{Deserialize, Serialize};
@@ -21,6 +23,23 @@ pub struct FaceMesh {
     /// over the mesh's primitives) the welded vertex it became, or `None` if no face used it.
     /// Exports use this to write poses in the user's own vertex order.
     pub input_to_vertex: Vec<Option<u32>>,
+}
+
+/// A position must be finite and within [`MAX_COORDINATE`] of the origin.
+fn check_coordinates(input_index: usize, p: DVec3) -> Result<(), PrepError> {
+    if !p.is_finite() {
+        return Err(PrepError::NonFiniteVertex {
+            input_index,
+            position: p.to_array(),
+        });
+    }
+    if p.abs().max_element() > MAX_COORDINATE {
+        return Err(PrepError::CoordinateTooLarge {
+            input_index,
+            position: p.to_array(),
+        });
+    }
+    Ok(())
 }
 
 /// Bit pattern of a position, with −0.0 folded onto +0.0, for exact welding.
@@ -59,12 +78,7 @@ fn weld(positions: &[DVec3], triangles: &[[u32; 3]]) -> Result<Welded, PrepError
         if !used[i] {
             continue;
         }
-        if !p.is_finite() {
-            return Err(PrepError::NonFiniteVertex {
-                input_index: i,
-                position: p.to_array(),
-            });
-        }
+        check_coordinates(i, p)?;
         let id = *by_key.entry(weld_key(p)).or_insert_with(|| {
             vertices.push(p);
             (vertices.len() - 1) as u32
@@ -97,6 +111,9 @@ impl FaceMesh {
         positions: &[DVec3],
         triangles: &[[u32; 3]],
     ) -> Result<FaceMesh, PrepError> {
+        let limits = InputLimits::default();
+        limits.check_count("positions", positions.len() as u64, limits.max_positions)?;
+        limits.check_count("triangles", triangles.len() as u64, limits.max_triangles)?;
         let w = weld(positions, triangles)?;
         let input_to_vertex = positions
             .iter()
@@ -135,14 +152,27 @@ impl FaceMesh {
         FaceMesh::from_obj_reader(&mut text.as_bytes())
     }
 
-    /// Like [`FaceMesh::from_obj_str`], from a buffered reader.
+    /// Like [`FaceMesh::from_obj_str`], from a buffered reader (at most
+    /// [`InputLimits::max_file_bytes`] bytes are read).
     pub fn from_obj_reader(reader: &mut impl BufRead) -> Result<FaceMesh, PrepError> {
+        use std::io::Read;
+        let limits = InputLimits::default();
         let mut bytes = Vec::new();
-        reader.read_to_end(&mut bytes).map_err(|e| PrepError::Io {
-            path: "<reader>".into(),
-            source: e,
-        })?;
-        let text = String::from_utf8_lossy(&bytes);
+        reader
+            .take(limits.max_file_bytes.saturating_add(1))
+            .read_to_end(&mut bytes)
+            .map_err(|e| PrepError::Io {
+                path: "<reader>".into(),
+                source: e,
+            })?;
+        limits.check_file_bytes(bytes.len() as u64)?;
+        FaceMesh::from_obj_bytes(&bytes, &limits)
+    }
+
+    /// Parses OBJ bytes (see [`FaceMesh::from_obj_str`]) with explicit size limits.
+    pub fn from_obj_bytes(bytes: &[u8], limits: &InputLimits) -> Result<FaceMesh, PrepError> {
+        limits.check_file_bytes(bytes.len() as u64)?;
+        let text = String::from_utf8_lossy(bytes);
         let options = tobj::LoadOptions {
             single_index: false,
             triangulate: true,
@@ -154,6 +184,10 @@ impl FaceMesh {
                 .map_err(|e| PrepError::Obj {
                     reason: e.to_string(),
                 })?;
+        let position_count: usize = models.iter().map(|m| m.mesh.positions.len() / 3).sum();
+        let index_count: usize = models.iter().map(|m| m.mesh.indices.len() / 3).sum();
+        limits.check_count("positions", position_count as u64, limits.max_positions)?;
+        limits.check_count("triangles", index_count as u64, limits.max_triangles)?;
         let mut positions = Vec::new();
         let mut triangles = Vec::new();
         for m in &models {
@@ -174,12 +208,7 @@ impl FaceMesh {
         // NaN check in file order so the message names the `v` line's index.
         let file_positions = scan_obj_positions(&text);
         for (i, p) in file_positions.iter().enumerate() {
-            if !p.is_finite() {
-                return Err(PrepError::NonFiniteVertex {
-                    input_index: i,
-                    position: p.to_array(),
-                });
-            }
+            check_coordinates(i, *p)?;
         }
         let w = weld(&positions, &triangles)?;
         let input_to_vertex = file_positions
@@ -193,7 +222,18 @@ impl FaceMesh {
     /// `.gltf` with data URIs), or the mesh named `mesh_name`. The transforms of the first node
     /// that instantiates the mesh (in scene order) are applied.
     pub fn from_gltf_slice(bytes: &[u8], mesh_name: Option<&str>) -> Result<FaceMesh, PrepError> {
-        gltf_mesh(bytes, None, mesh_name)
+        gltf_mesh(bytes, None, mesh_name, &InputLimits::default())
+    }
+
+    /// Like [`FaceMesh::from_gltf_slice`] for a document read from `folder` (relative buffer
+    /// URIs are read from inside that folder only), with explicit size limits.
+    pub fn from_gltf_bytes(
+        bytes: &[u8],
+        folder: Option<&Path>,
+        mesh_name: Option<&str>,
+        limits: &InputLimits,
+    ) -> Result<FaceMesh, PrepError> {
+        gltf_mesh(bytes, folder, mesh_name, limits)
     }
 }
 
@@ -223,50 +263,60 @@ fn gltf_mesh(
     bytes: &[u8],
     base: Option<&Path>,
     mesh_name: Option<&str>,
+    limits: &InputLimits,
 ) -> Result<FaceMesh, PrepError> {
-    let gltf::Gltf { document, blob } = gltf::Gltf::from_slice(bytes)?;
-    let buffers = gltf::import_buffers(&document, base, blob)?;
-    let label = |m: &gltf::Mesh| {
-        m.name()
-            .map(str::to_owned)
-            .unwrap_or_else(|| format!("#{}", m.index()))
-    };
+    let mut doc = Document::parse(bytes, base, limits)?;
+    let labels = gltf_read::mesh_labels(&doc.root);
     let mesh = match mesh_name {
-        None => document.meshes().next().ok_or(PrepError::GltfNoMesh)?,
-        Some(name) => document
-            .meshes()
-            .find(|m| m.name() == Some(name))
+        None if labels.is_empty() => return Err(PrepError::GltfNoMesh),
+        None => 0,
+        Some(name) => doc
+            .root
+            .meshes
+            .iter()
+            .position(|m| m.name.as_deref() == Some(name))
             .ok_or_else(|| PrepError::GltfMeshNotFound {
                 name: name.to_owned(),
-                available: document.meshes().map(|m| label(&m)).collect(),
+                available: labels.clone(),
             })?,
     };
-    let world = mesh_world_transform(&document, mesh.index()).unwrap_or(DMat4::IDENTITY);
+    let world = doc.mesh_world_transform(mesh)?.unwrap_or(DMat4::IDENTITY);
     let mut positions = Vec::new();
     let mut triangles = Vec::new();
-    for (pi, prim) in mesh.primitives().enumerate() {
+    for (pi, (pos, indices, mode)) in gltf_read::primitives(&doc.root, mesh)
+        .into_iter()
+        .enumerate()
+    {
         let err = |reason: &str| PrepError::GltfPrimitive {
-            mesh: label(&mesh),
+            mesh: labels[mesh].clone(),
             primitive: pi,
             reason: reason.to_owned(),
         };
-        let reader = prim.reader(|b| buffers.get(b.index()).map(|d| &d.0[..]));
+        let pos = pos.ok_or_else(|| err("no POSITION attribute"))?;
         let base = positions.len() as u32;
-        let pos: Vec<DVec3> = reader
-            .read_positions()
-            .ok_or_else(|| err("no POSITION attribute"))?
-            .map(|p| world.transform_point3(DVec3::new(p[0] as f64, p[1] as f64, p[2] as f64)))
+        let pos: Vec<DVec3> = doc
+            .read_vec3(pos)?
+            .into_iter()
+            .map(|p| world.transform_point3(p))
             .collect();
         let n = pos.len() as u32;
+        limits.check_count(
+            "positions",
+            (positions.len() + pos.len()) as u64,
+            limits.max_positions,
+        )?;
         positions.extend(pos);
-        let idx: Vec<u32> = match reader.read_indices() {
-            Some(i) => i.into_u32().collect(),
+        let idx: Vec<u32> = match indices {
+            Some(i) => doc.read_indices(i)?,
             None => (0..n).collect(),
         };
-        use gltf::mesh::Mode;
-        let tris: Vec<[u32; 3]> = match prim.mode() {
-            Mode::Triangles => idx.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect(),
-            Mode::TriangleStrip => (2..idx.len())
+        use gltf::json::mesh::Mode;
+        use gltf::json::validation::Checked;
+        let tris: Vec<[u32; 3]> = match mode {
+            Checked::Valid(Mode::Triangles) => {
+                idx.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect()
+            }
+            Checked::Valid(Mode::TriangleStrip) => (2..idx.len())
                 .map(|k| {
                     if k % 2 == 0 {
                         [idx[k - 2], idx[k - 1], idx[k]]
@@ -275,14 +325,24 @@ fn gltf_mesh(
                     }
                 })
                 .collect(),
-            Mode::TriangleFan => (2..idx.len())
+            Checked::Valid(Mode::TriangleFan) => (2..idx.len())
                 .map(|k| [idx[0], idx[k - 1], idx[k]])
                 .collect(),
-            other => return Err(err(&format!("mode {other:?} is not a triangle mode"))),
+            Checked::Valid(other) => {
+                return Err(err(&format!("mode {other:?} is not a triangle mode")));
+            }
+            Checked::Invalid => return Err(err("invalid mode")),
         };
+        limits.check_count(
+            "triangles",
+            (triangles.len() + tris.len()) as u64,
+            limits.max_triangles,
+        )?;
         for t in tris {
-            if t.iter().any(|&i| i >= n) {
-                return Err(err("index beyond the POSITION accessor"));
+            if let Some(&i) = t.iter().find(|&&i| i >= n) {
+                return Err(err(&format!(
+                    "index {i} is beyond the POSITION accessor's {n} elements"
+                )));
             }
             triangles.push(t.map(|i| i + base));
         }
@@ -293,33 +353,6 @@ fn gltf_mesh(
         }
     }
     FaceMesh::from_triangles(&positions, &triangles)
-}
-
-/// World transform of the first node (depth-first over the scenes, default scene first) that
-/// instantiates mesh `mesh_index`.
-fn mesh_world_transform(document: &gltf::Document, mesh_index: usize) -> Option<DMat4> {
-    fn visit(node: gltf::Node, parent: DMat4, mesh_index: usize) -> Option<DMat4> {
-        let local =
-            DMat4::from_cols_array_2d(&node.transform().matrix().map(|c| c.map(|x| x as f64)));
-        let world = parent * local;
-        if node.mesh().map(|m| m.index()) == Some(mesh_index) {
-            return Some(world);
-        }
-        node.children().find_map(|c| visit(c, world, mesh_index))
-    }
-    let scenes = document
-        .default_scene()
-        .into_iter()
-        .chain(document.scenes());
-    for scene in scenes {
-        if let Some(m) = scene
-            .nodes()
-            .find_map(|n| visit(n, DMat4::IDENTITY, mesh_index))
-        {
-            return Some(m);
-        }
-    }
-    None
 }
 
 /// Loads a face mesh, dispatching on the extension: `.obj` (tobj), `.gltf` or `.glb` (gltf,
@@ -337,20 +370,34 @@ pub fn load_face(path: &Path) -> Result<FaceMesh, PrepError> {
 
 /// Like [`load_face`]; for glTF/GLB, `mesh_name` selects the mesh (ignored for OBJ).
 pub fn load_face_mesh_named(path: &Path, mesh_name: Option<&str>) -> Result<FaceMesh, PrepError> {
+    load_face_with_limits(path, mesh_name, &InputLimits::default())
+}
+
+/// Like [`load_face_mesh_named`], with explicit input size limits (file bytes, positions,
+/// triangles), checked before the data is allocated.
+///
+/// ```
+/// use face_prep::{InputLimits, PrepError};
+/// let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+///     .join("../../assets/mediapipe_canonical_4loop.obj");
+/// let small = InputLimits { max_triangles: 100, ..InputLimits::default() };
+/// let err = face_prep::load_face_with_limits(&path, None, &small).unwrap_err();
+/// assert!(matches!(err, PrepError::TooLarge { what: "triangles", .. }), "{err}");
+/// ```
+pub fn load_face_with_limits(
+    path: &Path,
+    mesh_name: Option<&str>,
+    limits: &InputLimits,
+) -> Result<FaceMesh, PrepError> {
     let ext = path
         .extension()
         .and_then(|e| e.to_str())
         .unwrap_or("")
         .to_ascii_lowercase();
-    let read = || {
-        std::fs::read(path).map_err(|e| PrepError::Io {
-            path: path.to_owned(),
-            source: e,
-        })
-    };
+    let read = || read_input_file(path, limits);
     match ext.as_str() {
-        "obj" => FaceMesh::from_obj_reader(&mut &read()?[..]),
-        "gltf" | "glb" => gltf_mesh(&read()?, path.parent(), mesh_name),
+        "obj" => FaceMesh::from_obj_bytes(&read()?, limits),
+        "gltf" | "glb" => gltf_mesh(&read()?, path.parent(), mesh_name, limits),
         _ => Err(PrepError::UnsupportedExtension {
             path: path.to_owned(),
             extension: ext,

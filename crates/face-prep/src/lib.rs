@@ -16,11 +16,14 @@
 //! ```
 
 pub mod anatomy;
+pub mod atomic_write;
 pub mod bvh;
 pub mod closest_point;
-mod error;
+pub mod error;
 mod face_mesh;
 pub mod features;
+pub mod gltf_read;
+pub mod limits;
 pub mod muscle_file;
 mod muscle_kind;
 pub mod muscle_model;
@@ -32,8 +35,10 @@ pub mod topology;
 pub mod units;
 
 pub use error::{LoopSummary, MuscleFileError, PrepError};
-pub use face_mesh::{FaceMesh, load_face, load_face_mesh_named};
+pub use face_mesh::{FaceMesh, load_face, load_face_mesh_named, load_face_with_limits};
 pub use features::{Box2, FeatureBoxes};
+pub use gltf_read::GltfError;
+pub use limits::InputLimits;
 pub use muscle_kind::{MuscleKind, Side};
 pub use muscles::Muscle;
 pub use orient::FaceLoops;

@@ -133,7 +133,8 @@ fn read_chain(
         }
     };
     expect_header(lines, data_header, muscle, data_header)?;
-    let mut chain = Vec::with_capacity(declared);
+    // No capacity from the declared size: a file may declare 4294967295 and list nothing.
+    let mut chain = Vec::new();
     let mut seen = HashSet::new();
     loop {
         match lines.peek_nonblank() {
@@ -193,7 +194,14 @@ fn read_chain(
 pub fn read_str(text: &str, element_count: usize) -> Result<Vec<Muscle>, MuscleFileError> {
     let mut lines = Lines::new(text);
     let mut muscles = Vec::new();
+    let max_muscles = crate::InputLimits::default().max_muscles;
     while let Some((line, l)) = lines.next_nonblank() {
+        if muscles.len() >= max_muscles {
+            return Err(MuscleFileError::TooManyMuscles {
+                line,
+                limit: max_muscles,
+            });
+        }
         if !l.eq_ignore_ascii_case("[Name]") {
             return Err(MuscleFileError::Unexpected {
                 line,
@@ -237,10 +245,18 @@ pub fn read_str(text: &str, element_count: usize) -> Result<Vec<Muscle>, MuscleF
     Ok(muscles)
 }
 
-/// Like [`read_str`], from a reader.
-pub fn read(mut reader: impl Read, element_count: usize) -> Result<Vec<Muscle>, MuscleFileError> {
+/// Like [`read_str`], from a reader (at most [`crate::InputLimits::max_file_bytes`] bytes).
+pub fn read(reader: impl Read, element_count: usize) -> Result<Vec<Muscle>, MuscleFileError> {
+    let limit = crate::InputLimits::default().max_file_bytes;
     let mut text = String::new();
-    reader.read_to_string(&mut text)?;
+    reader
+        .take(limit.saturating_add(1))
+        .read_to_string(&mut text)?;
+    if text.len() as u64 > limit {
+        return Err(MuscleFileError::Io(std::io::Error::other(format!(
+            "muscle file larger than the input limit of {limit} bytes"
+        ))));
+    }
     read_str(&text, element_count)
 }
 
@@ -274,31 +290,22 @@ pub fn write(mut writer: impl Write, muscles: &[Muscle]) -> Result<(), MuscleFil
     Ok(())
 }
 
-/// Writes a muscle file atomically (temporary file in the same directory, then rename).
+/// Writes a muscle file atomically ([`crate::atomic_write::write_atomic`]: temporary file in
+/// the same folder, then rename; the existing file's mode is kept; a symlink or device at
+/// `path` is refused).
 pub fn save(path: &Path, muscles: &[Muscle]) -> Result<(), MuscleFileError> {
     let text = to_string(muscles)?;
-    let dir = path
-        .parent()
-        .filter(|d| !d.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
-    let file_name = path
-        .file_name()
-        .and_then(|n| n.to_str())
-        .unwrap_or("muscles");
-    let tmp = dir.join(format!(".{file_name}.{}.tmp", std::process::id()));
-    let result = (|| {
-        let mut f = std::fs::File::create(&tmp)?;
-        f.write_all(text.as_bytes())?;
-        f.sync_all()?;
-        std::fs::rename(&tmp, path)
-    })();
-    if result.is_err() {
-        let _ = std::fs::remove_file(&tmp);
-    }
-    Ok(result?)
+    crate::atomic_write::write_atomic(path, text.as_bytes())
+        .map_err(|e| MuscleFileError::Io(std::io::Error::other(e.to_string())))
 }
 
-/// Reads a muscle file from disk.
+/// Reads a muscle file from disk (a regular file only: a FIFO or device is refused unopened).
 pub fn load(path: &Path, element_count: usize) -> Result<Vec<Muscle>, MuscleFileError> {
+    if !std::fs::metadata(path)?.is_file() {
+        return Err(MuscleFileError::Io(std::io::Error::other(format!(
+            "{} is not a regular file",
+            path.display()
+        ))));
+    }
     read(std::fs::File::open(path)?, element_count)
 }

@@ -448,13 +448,27 @@ impl Shell {
             }
         }
         let adjacency = vertex_adjacency(nv, &self.triangles);
+        // Work bound: element-pair tests in proportion to the shell's size, so scrambled
+        // geometry (long elements overlapping the whole face, many stuck vertices) cannot make
+        // this quadratic. When it runs out, the remaining intersections stay (and are reported
+        // as the rig's shell self-intersections).
+        let budget = std::cell::Cell::new(RELOCATE_TESTS_PER_ELEMENT * self.triangles.len());
+        let spend = |n: usize| budget.set(budget.get().saturating_sub(n));
+        // The BVH of the current corners, rebuilt only after a vertex actually moved (the
+        // same hierarchy as rebuilding it for every vertex, without the repeated builds).
+        let mut tris: Vec<[DVec3; 3]> = Vec::new();
+        let mut bvh = TriangleBvh::new(&[]);
+        let mut stale = true;
         for _ in 0..12 {
             let mut changed = false;
             for &v in stuck {
                 let elems = &incident[v];
-                let tris: Vec<[DVec3; 3]> =
-                    (0..self.triangles.len()).map(|e| self.corners(e)).collect();
-                let bvh = TriangleBvh::new(&tris);
+                if stale {
+                    tris = (0..self.triangles.len()).map(|e| self.corners(e)).collect();
+                    bvh = TriangleBvh::new(&tris);
+                    stale = false;
+                }
+                let (tris, bvh) = (&tris, &bvh);
                 let cost = |shell: &Shell, p: DVec3| -> usize {
                     let corners = |e: usize| {
                         shell.triangles[e].map(|i| {
@@ -476,7 +490,9 @@ impl Shell {
                         }
                         let lo = a[0].min(a[1]).min(a[2]);
                         let hi = a[0].max(a[1]).max(a[2]);
-                        for f in bvh.overlapping(lo, hi) {
+                        let near = bvh.overlapping(lo, hi);
+                        spend(near.len() + elems.len());
+                        for f in near {
                             let f = f as usize;
                             if elems.contains(&f) {
                                 continue;
@@ -539,6 +555,9 @@ impl Shell {
                             / neighbours.len() as f64,
                     );
                 }
+                if budget.get() == 0 {
+                    return;
+                }
                 let mut best = (cost(self, candidates[0]), 0);
                 if best.0 == 0 {
                     continue;
@@ -552,6 +571,7 @@ impl Shell {
                 if best.1 != 0 {
                     self.vertices[v] = candidates[best.1];
                     changed = true;
+                    stale = true;
                 }
             }
             if !changed {
@@ -659,6 +679,11 @@ fn triangles_intersect(ta: [u32; 3], a: &[DVec3; 3], tb: [u32; 3], b: &[DVec3; 3
         _ => false,
     }
 }
+
+/// Element-pair tests [`Shell`]'s last-resort relocation of stuck back vertices may make per
+/// shell element: bounds its time by the shell's size on scrambled input (a `v` line swapped:
+/// elements spanning the whole face), far above what the bundled faces use.
+pub const RELOCATE_TESTS_PER_ELEMENT: usize = 500;
 
 /// Factor applied per repair round to the offset of back/rim vertices of intersecting elements.
 /// Gentler than halving: with the full offset kept up to the knife-edge taper, halving thinned
