@@ -38,7 +38,7 @@ pub mod presets;
 pub mod rolled_in;
 mod solve;
 
-pub use atomic_write::{WriteError, write_atomic};
+pub use atomic_write::{OutputPathError, WriteError, check_output, write_atomic};
 pub use basis::{MuscleBasis, PoseError};
 pub use control::{Control, Progress, Stage};
 pub use pipeline::{

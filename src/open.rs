@@ -3,7 +3,7 @@
 
 use std::path::{Path, PathBuf};
 
-use face_prep::FaceMesh;
+use face_prep::{FaceMesh, InputLimits};
 
 use crate::cache::{self, CacheError};
 use crate::control::Control;
@@ -60,28 +60,53 @@ pub enum Opened {
 
 /// Opens `path`: a facebem rig/cache file (recognised by its magic bytes, whatever its name),
 /// an OBJ, or a glTF/GLB face.
+///
+/// Only a regular file is opened (a FIFO or device is refused without blocking on it), and
+/// face meshes are held to the default [`InputLimits`]; see [`open_with_limits`].
 pub fn open(path: &Path) -> Result<Opened, OpenError> {
-    let bytes = std::fs::read(path).map_err(|source| OpenError::Read {
-        path: path.to_path_buf(),
-        source,
-    })?;
+    open_with_limits(path, &InputLimits::default())
+}
+
+/// Like [`open`], with explicit size limits for face meshes (rig files are read up to
+/// [`cache::MAX_RIG_BYTES`]).
+pub fn open_with_limits(path: &Path, limits: &InputLimits) -> Result<Opened, OpenError> {
+    let rig_limits = InputLimits {
+        max_file_bytes: limits.max_file_bytes.max(cache::MAX_RIG_BYTES),
+        ..*limits
+    };
+    let bytes = read_bytes(path, &rig_limits)?;
     if cache::is_cache(&bytes) {
-        return Ok(Opened::Model(Box::new(cache::load(path)?)));
+        return Ok(Opened::Model(Box::new(cache::from_bytes(path, &bytes)?)));
     }
-    let (mesh, obj_source) = face_from_bytes(path, &bytes)?;
+    let (mesh, obj_source) = face_from_bytes(path, &bytes, limits)?;
     Ok(Opened::Face { mesh, obj_source })
 }
 
 /// Reads a face mesh file (OBJ, glTF, GLB), keeping the OBJ text for exports.
 pub fn read_face(path: &Path) -> Result<(FaceMesh, Option<String>), OpenError> {
-    let bytes = std::fs::read(path).map_err(|source| OpenError::Read {
-        path: path.to_path_buf(),
-        source,
-    })?;
-    face_from_bytes(path, &bytes)
+    let limits = InputLimits::default();
+    let bytes = read_bytes(path, &limits)?;
+    face_from_bytes(path, &bytes, &limits)
 }
 
-fn face_from_bytes(path: &Path, bytes: &[u8]) -> Result<(FaceMesh, Option<String>), OpenError> {
+fn read_bytes(path: &Path, limits: &InputLimits) -> Result<Vec<u8>, OpenError> {
+    face_prep::limits::read_input_file(path, limits).map_err(|e| match e {
+        face_prep::PrepError::Io { source, .. } => OpenError::Read {
+            path: path.to_path_buf(),
+            source,
+        },
+        other => OpenError::Face {
+            path: path.to_path_buf(),
+            source: Box::new(other),
+        },
+    })
+}
+
+fn face_from_bytes(
+    path: &Path,
+    bytes: &[u8],
+    limits: &InputLimits,
+) -> Result<(FaceMesh, Option<String>), OpenError> {
     let face_err = |source| OpenError::Face {
         path: path.to_path_buf(),
         source: Box::new(source),
@@ -91,11 +116,22 @@ fn face_from_bytes(path: &Path, bytes: &[u8]) -> Result<(FaceMesh, Option<String
         .and_then(|e| e.to_str())
         .is_some_and(|e| e.eq_ignore_ascii_case("obj"));
     if is_obj {
-        let text = String::from_utf8_lossy(bytes).into_owned();
-        let mesh = FaceMesh::from_obj_str(&text).map_err(face_err)?;
-        Ok((mesh, Some(text)))
+        let mesh = FaceMesh::from_obj_bytes(bytes, limits).map_err(face_err)?;
+        Ok((mesh, Some(String::from_utf8_lossy(bytes).into_owned())))
     } else {
-        let mesh = face_prep::load_face(path).map_err(face_err)?;
+        let ext = path
+            .extension()
+            .and_then(|e| e.to_str())
+            .unwrap_or("")
+            .to_ascii_lowercase();
+        if ext != "gltf" && ext != "glb" {
+            return Err(face_err(face_prep::PrepError::UnsupportedExtension {
+                path: path.to_path_buf(),
+                extension: ext,
+            }));
+        }
+        let mesh =
+            FaceMesh::from_gltf_bytes(bytes, path.parent(), None, limits).map_err(face_err)?;
         Ok((mesh, None))
     }
 }

@@ -108,19 +108,19 @@ struct SheetArgs {
 #[derive(Args)]
 struct SolverArgs {
     /// Poisson ratio of the tissue, in [0, 0.5).
-    #[arg(long, default_value_t = 0.45)]
+    #[arg(long, default_value_t = 0.45, allow_negative_numbers = true)]
     poisson: f64,
     /// Faces with more front triangles than this are simulated on a simplified copy.
-    #[arg(long, default_value_t = LargeFaceParams::default().max_triangles)]
+    #[arg(long, default_value_t = LargeFaceParams::default().max_triangles, allow_negative_numbers = true)]
     max_triangles: usize,
     /// Triangle count of the simplified copy.
-    #[arg(long, default_value_t = LargeFaceParams::default().target_triangles)]
+    #[arg(long, default_value_t = LargeFaceParams::default().target_triangles, allow_negative_numbers = true)]
     target_triangles: usize,
     /// Back-face offset of the shell, as a fraction of the face size.
-    #[arg(long, default_value_t = RigParams::default().offset)]
+    #[arg(long, default_value_t = RigParams::default().offset, allow_negative_numbers = true)]
     offset: f64,
     /// Rim thickness of the shell, as a fraction of the face size.
-    #[arg(long, default_value_t = RigParams::default().thickness)]
+    #[arg(long, default_value_t = RigParams::default().thickness, allow_negative_numbers = true)]
     thickness: f64,
     /// Simulate eyelids and lips that roll in behind the eye and mouth contours too (by
     /// default they are peeled off the simulated copy and follow the nearest simulated point).
@@ -229,7 +229,12 @@ fn compute(
 
 /// A posable model from a rig file, or from a face mesh computed with default parameters.
 fn model_from(path: &Path) -> Result<FaceModel> {
-    match open(path)? {
+    model_from_opened(path, open(path)?)
+}
+
+/// Like [`model_from`], for a file already opened.
+fn model_from_opened(path: &Path, opened: Opened) -> Result<FaceModel> {
+    match opened {
         Opened::Model(model) => Ok(*model),
         Opened::Face { mesh, obj_source } => {
             eprintln!("{} is a face mesh: computing its rig first", path.display());
@@ -239,6 +244,8 @@ fn model_from(path: &Path) -> Result<FaceModel> {
 }
 
 fn rig(face: &Path, output: &Path, muscles: Option<&Path>, solver: &SolverArgs) -> Result<()> {
+    let inputs: Vec<&Path> = std::iter::once(face).chain(muscles).collect();
+    facebem::check_output(output, &inputs, &["rig"], "a rig file")?;
     let (mesh, obj_source) = match open(face)? {
         Opened::Face { mesh, obj_source } => (mesh, obj_source),
         Opened::Model(_) => bail!("{} is already a rig file; give a face mesh", face.display()),
@@ -313,6 +320,7 @@ fn parse_set(s: &str) -> Result<(String, f64)> {
 }
 
 fn pose(rig: &Path, sets: &[String], preset: Option<&str>, output: &Path) -> Result<()> {
+    facebem::check_output(output, &[rig], &["obj"], "a pose (OBJ)")?;
     let parsed: Vec<(String, f64)> = sets.iter().map(|s| parse_set(s)).collect::<Result<_>>()?;
     let preset = preset
         .map(|name| {
@@ -324,7 +332,19 @@ fn pose(rig: &Path, sets: &[String], preset: Option<&str>, output: &Path) -> Res
             })
         })
         .transpose()?;
-    let model = model_from(rig)?;
+    let opened = open(rig)?;
+    // Unknown muscle names are found before a face mesh's rig is computed.
+    let known: Vec<String> = match &opened {
+        Opened::Model(model) => model.muscle_ids().to_vec(),
+        Opened::Face { .. } => face_prep::MuscleKind::ALL
+            .iter()
+            .map(|k| k.id().to_string())
+            .collect(),
+    };
+    if let Some((id, _)) = parsed.iter().find(|(id, _)| !known.contains(id)) {
+        bail!("unknown muscle {id:?} (known: {})", known.join(", "));
+    }
+    let model = model_from_opened(rig, opened)?;
     let ids = model.muscle_ids().to_vec();
     let mut sliders = preset.map_or_else(|| vec![0.0; ids.len()], |p| p.sliders_for(&ids));
     for (id, value) in parsed {
@@ -344,6 +364,7 @@ fn pose(rig: &Path, sets: &[String], preset: Option<&str>, output: &Path) -> Res
 }
 
 fn export(rig: &Path, gltf: &Path, no_animation: bool) -> Result<()> {
+    facebem::check_output(gltf, &[rig], &["glb", "gltf"], "a glTF export")?;
     let model = model_from(rig)?;
     let params = facebem::export::GltfParams {
         animation: !no_animation,
@@ -359,6 +380,7 @@ fn export(rig: &Path, gltf: &Path, no_animation: bool) -> Result<()> {
 }
 
 fn muscles(face: &Path, output: &Path) -> Result<()> {
+    facebem::check_output(output, &[face], &["muscles"], "a muscle file")?;
     let rig = match open(face)? {
         Opened::Model(model) => model.rig,
         Opened::Face { mesh, .. } => facebem::prep_rig(&mesh, &PipelineParams::default())?,

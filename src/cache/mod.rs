@@ -15,6 +15,7 @@
 //! ```
 
 pub mod container;
+mod validate;
 
 use std::path::{Path, PathBuf};
 
@@ -23,6 +24,10 @@ use face_prep::FaceMesh;
 use crate::atomic_write::{WriteError, write_atomic};
 use crate::pipeline::{FaceModel, PipelineParams};
 pub use container::{ContainerError, FORMAT_VERSION, Header, MAGIC};
+pub use validate::validate_model;
+
+/// Largest rig file read (1 GiB; a rig of the 13 120-triangle face is a few MB).
+pub const MAX_RIG_BYTES: u64 = 1 << 30;
 
 /// Errors saving or loading a cache file.
 #[derive(Debug, thiserror::Error)]
@@ -47,6 +52,14 @@ pub enum CacheError {
         /// What is wrong with it.
         #[source]
         source: ContainerError,
+    },
+    /// The file decodes but its content is inconsistent (crafted or from a broken build).
+    #[error("{path} is not a valid rig: {reason}")]
+    Invalid {
+        /// The cache file.
+        path: PathBuf,
+        /// What is wrong.
+        reason: String,
     },
     /// The cache was computed for another face mesh.
     #[error("{path} was computed for another face mesh (mesh hash differs)")]
@@ -120,13 +133,32 @@ pub fn save(path: &Path, model: &FaceModel) -> Result<(), CacheError> {
     Ok(())
 }
 
-/// Loads a cache file, checking magic, version, length and checksum.
-pub fn load(path: &Path) -> Result<FaceModel, CacheError> {
-    let bytes = std::fs::read(path).map_err(|source| CacheError::Read {
+/// Reads a rig file's bytes: a regular file only (a FIFO or device is refused unopened), at
+/// most [`MAX_RIG_BYTES`].
+fn read_rig_bytes(path: &Path) -> Result<Vec<u8>, CacheError> {
+    let limits = face_prep::InputLimits {
+        max_file_bytes: MAX_RIG_BYTES,
+        ..Default::default()
+    };
+    face_prep::limits::read_input_file(path, &limits).map_err(|e| CacheError::Read {
         path: path.to_path_buf(),
-        source,
-    })?;
-    let (header, model) = decode_checked(path, &bytes)?;
+        source: match e {
+            face_prep::PrepError::Io { source, .. } => source,
+            other => std::io::Error::other(other.to_string()),
+        },
+    })
+}
+
+/// Loads a cache file, checking magic, version, length and checksum, then the decoded content
+/// ([`validate_model`]).
+pub fn load(path: &Path) -> Result<FaceModel, CacheError> {
+    let bytes = read_rig_bytes(path)?;
+    from_bytes(path, &bytes)
+}
+
+/// Decodes and checks the bytes of a rig file (`path` is only used in messages).
+pub fn from_bytes(path: &Path, bytes: &[u8]) -> Result<FaceModel, CacheError> {
+    let (header, model) = decode_checked(path, bytes)?;
     // The header's hashes must describe the payload (else the file was spliced together).
     if header.input_hash != mesh_hash(&model.mesh) {
         return Err(CacheError::OtherMesh {
@@ -142,10 +174,7 @@ pub fn load_for(
     mesh: &FaceMesh,
     params: &PipelineParams,
 ) -> Result<FaceModel, CacheError> {
-    let bytes = std::fs::read(path).map_err(|source| CacheError::Read {
-        path: path.to_path_buf(),
-        source,
-    })?;
+    let bytes = read_rig_bytes(path)?;
     // Cheap header check first: a cache for another mesh is rejected without decoding it.
     let header = container::read_header(&bytes).map_err(|source| CacheError::Container {
         path: path.to_path_buf(),
@@ -176,8 +205,14 @@ pub fn is_cache(bytes: &[u8]) -> bool {
 }
 
 fn decode_checked(path: &Path, bytes: &[u8]) -> Result<(Header, FaceModel), CacheError> {
-    container::decode(bytes).map_err(|source| CacheError::Container {
+    let (header, model): (Header, FaceModel) =
+        container::decode(bytes).map_err(|source| CacheError::Container {
+            path: path.to_path_buf(),
+            source,
+        })?;
+    validate_model(&model).map_err(|reason| CacheError::Invalid {
         path: path.to_path_buf(),
-        source,
-    })
+        reason,
+    })?;
+    Ok((header, model))
 }

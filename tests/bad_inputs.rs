@@ -1,0 +1,100 @@
+//! The regression corpus of hostile and broken files (`tests/bad_inputs/`, issue 13): each
+//! gives the exit status and one-line message `EXPECTED.tsv` names, and writes nothing.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn corpus() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/bad_inputs")
+}
+
+fn listing(dir: &Path) -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    names
+}
+
+struct Row {
+    file: String,
+    exit: i32,
+    needle: String,
+}
+
+fn rows() -> Vec<Row> {
+    let text = std::fs::read_to_string(corpus().join("EXPECTED.tsv")).unwrap();
+    text.lines()
+        .filter(|l| !l.starts_with('#') && !l.trim().is_empty())
+        .map(|l| {
+            let mut parts = l.splitn(3, '\t');
+            let file = parts.next().unwrap().to_owned();
+            let exit = parts.next().expect(l).trim().parse().expect(l);
+            let needle = parts.next().unwrap_or("").to_owned();
+            Row { file, exit, needle }
+        })
+        .collect()
+}
+
+fn run(row: &Row) -> Result<(), String> {
+    let dir = tempfile::tempdir().unwrap();
+    let input = dir.path().join(&row.file);
+    std::fs::copy(corpus().join(&row.file), &input).map_err(|e| format!("copy: {e}"))?;
+    let before = listing(dir.path());
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_facebem"));
+    let out_rig = dir.path().join("out.rig");
+    if row.file.ends_with(".muscles") {
+        let face =
+            Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/mediapipe_canonical_4loop.obj");
+        cmd.arg("rig")
+            .arg(&face)
+            .arg("--muscles")
+            .arg(&input)
+            .arg("-o")
+            .arg(&out_rig);
+    } else {
+        cmd.arg("info").arg(&input);
+    }
+    let out = cmd.output().map_err(|e| format!("spawn: {e}"))?;
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    let code = out.status.code();
+    if code != Some(row.exit) {
+        return Err(format!("exit {code:?}, expected {}: {stderr}", row.exit));
+    }
+    if row.exit != 0 {
+        let lines: Vec<&str> = stderr.lines().collect();
+        if lines.len() != 1 || !lines[0].starts_with("error: ") {
+            return Err(format!("not a one-line error: {stderr:?}"));
+        }
+        if !lines[0].contains(&row.needle) {
+            return Err(format!("message lacks {:?}: {}", row.needle, lines[0]));
+        }
+        if lines[0].len() > 600 {
+            return Err(format!("message of {} bytes", lines[0].len()));
+        }
+        if listing(dir.path()) != before {
+            return Err(format!("wrote files: {:?}", listing(dir.path())));
+        }
+    }
+    Ok(())
+}
+
+#[test]
+fn every_corpus_file_fails_as_expected_and_writes_nothing() {
+    let rows = rows();
+    assert!(rows.len() >= 40, "{} rows", rows.len());
+    let listed: Vec<&str> = rows.iter().map(|r| r.file.as_str()).collect();
+    for name in listing(&corpus()) {
+        let data = !(name.ends_with(".md") || name.ends_with(".tsv") || name.ends_with(".py"));
+        assert!(
+            !data || listed.contains(&name.as_str()),
+            "{name} has no row in EXPECTED.tsv"
+        );
+    }
+    let failures: Vec<String> = rows
+        .iter()
+        .filter_map(|r| run(r).err().map(|e| format!("{}: {e}", r.file)))
+        .collect();
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
