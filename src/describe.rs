@@ -103,3 +103,38 @@ fn fmt_box(b: &Box2) -> String {
         b.min.x, b.max.x, b.min.y, b.max.y
     )
 }
+
+/// What `facebem info` can still say about a mesh whose rig cannot be built: its size and the
+/// boundary loops it has (edges, perimeter, bounding box in the input frame).
+///
+/// ```
+/// let mesh = facebem::open::default_face().unwrap();
+/// let text = facebem::describe::describe_loops("face.obj".as_ref(), &mesh);
+/// assert!(text.contains("4 boundary loops"), "{text}");
+/// ```
+pub fn describe_loops(path: &Path, mesh: &FaceMesh) -> String {
+    let mut s = String::new();
+    let _ = writeln!(s, "{} (face mesh)", path.display());
+    let _ = writeln!(
+        s,
+        "  face: {} vertices, {} triangles",
+        mesh.vertices.len(),
+        mesh.triangles.len()
+    );
+    if let Ok(loops) = face_prep::topology::validate(&mesh.vertices, &mesh.triangles) {
+        let _ = writeln!(s, "  {} boundary loops:", loops.len());
+        let summaries = face_prep::topology::loop_summaries(&mesh.vertices, &loops);
+        for (i, (l, sum)) in loops.iter().zip(&summaries).enumerate().take(10) {
+            let perimeter = face_prep::orient::loop_perimeter(&mesh.vertices, l);
+            let _ = writeln!(
+                s,
+                "    loop {i}: perimeter {}, {sum}",
+                face_prep::error::sig6(perimeter)
+            );
+        }
+        if loops.len() > 10 {
+            let _ = writeln!(s, "    and {} more", loops.len() - 10);
+        }
+    }
+    s
+}

@@ -295,11 +295,14 @@ fn info(file: &Path) -> Result<()> {
     let opened = open(file)?;
     let (rig, mesh, model) = match &opened {
         Opened::Model(model) => (model.rig.clone(), &model.mesh, Some(model.as_ref())),
-        Opened::Face { mesh, .. } => (
-            facebem::prep_rig(mesh, &PipelineParams::default())?,
-            mesh,
-            None,
-        ),
+        Opened::Face { mesh, .. } => match facebem::prep_rig(mesh, &PipelineParams::default()) {
+            Ok(rig) => (rig, mesh, None),
+            Err(e) => {
+                // Still describe what was found, then the error.
+                print!("{}", facebem::describe::describe_loops(file, mesh));
+                return Err(e.into());
+            }
+        },
     };
     print!("{}", facebem::describe::describe(file, mesh, &rig, model));
     Ok(())

@@ -64,3 +64,32 @@ open('muscles_300_muscles.muscles','w').write("".join(f"[Name]\nm{i}\n[Size]\n1\
 open('muscles_huge_index.muscles','w').write("[Name]\nFrontalis L\n[Size]\n1\n[Data]\n4294967295\n")
 open('muscles_negative_size.muscles','w').write("[Name]\nFrontalis L\n[Size]\n-1\n[Data]\n")
 open('muscles_long_garbage_line.muscles','w').write("[Name]\nFrontalis L\n[Size]\n"+"9"*5000+"\n")
+# A whole head (UV sphere) cut at the neck, with holes at both eyes and the mouth: four loops,
+# but the largest (the "outer" one) is the neck cut below the mouth, not the face's outline.
+import math
+NLAT, NLON = 24, 48
+verts, faces = [], []
+def vid(i, j): return i * NLON + (j % NLON)
+for i in range(NLAT + 1):
+    lat = -math.pi / 2 + math.pi * i / NLAT
+    for j in range(NLON):
+        lon = 2 * math.pi * j / NLON
+        verts.append((math.cos(lat) * math.sin(lon), math.sin(lat), math.cos(lat) * math.cos(lon)))
+holes = {(14, 45), (14, 3), (8, 0), (8, 47)}  # (lat band, lon cell): eye R, eye L, mouth (2 cells)
+for i in range(NLAT):
+    for j in range(NLON):
+        if i < 4 or (i, j) in holes:  # below the neck cut, or a hole
+            continue
+        a, b, c, d = vid(i, j), vid(i, j + 1), vid(i + 1, j + 1), vid(i + 1, j)
+        if i == NLAT - 1:
+            faces.append((a, b, c))
+        else:
+            faces += [(a, b, c), (a, c, d)]
+used = sorted({v for f in faces for v in f})
+remap = {v: k + 1 for k, v in enumerate(used)}
+with open('obj_head_cut_at_neck.obj', 'w') as f:
+    f.write("# a whole head cut at the neck (not a front face)\n")
+    for v in used:
+        f.write("v %.6f %.6f %.6f\n" % verts[v])
+    for t in faces:
+        f.write("f %d %d %d\n" % tuple(remap[v] for v in t))

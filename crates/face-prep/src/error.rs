@@ -283,6 +283,15 @@ pub enum PrepError {
         /// Size and bounding box of each loop found.
         loops: Vec<LoopSummary>,
     },
+    /// The mesh has four loops but is not a front face (e.g. a whole head cut at the neck).
+    #[error(
+        "not a front face: {reason}. The input must be the front of a face only: one sheet cut \
+         along the face's outline (forehead, temples, jaw), open at both eyes and the mouth"
+    )]
+    NotAFrontFace {
+        /// What the loops are and why they do not make a front face.
+        reason: String,
+    },
     /// The canonical frame cannot be determined.
     #[error("cannot orient the face: {reason}")]
     Orientation {

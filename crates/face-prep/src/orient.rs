@@ -2,7 +2,8 @@
 //! classification of the four boundary loops.
 
 use crate::error::PrepError;
-use glam::{DAffine3, DMat3, DVec3};
+use crate::error::{fmt_p, sig6};
+use glam::{DAffine3, DMat3, DVec2, DVec3};
 use serde::{Deserialize, Serialize};
 
 /// The four boundary loops of a face, as vertex indices of the face mesh in the direction of the
@@ -86,7 +87,12 @@ pub fn canonical_frame(
     let scale = (c2 - c1).length().max((cm - c1).length());
     if normal.length().is_nan() || normal.length() <= 1e-6 * scale * scale {
         return Err(PrepError::Orientation {
-            reason: format!("eye and mouth centroids {c1}, {c2}, {cm} are collinear"),
+            reason: format!(
+                "eye and mouth centroids {}, {}, {} are collinear",
+                fmt_p(&c1),
+                fmt_p(&c2),
+                fmt_p(&cm)
+            ),
         });
     }
     let mut z = normal.normalize();
@@ -123,6 +129,39 @@ pub fn canonical_frame(
     } else {
         (e2, e1)
     };
+    // A front face's outer contour surrounds its eyes and mouth in the face plane; a whole head
+    // cut at the neck has the neck cut as its longest loop, below the mouth.
+    let outline: Vec<DVec2> = loops[outer]
+        .iter()
+        .map(|&v| {
+            canonical_from_input
+                .transform_point3(vertices[v as usize])
+                .truncate()
+        })
+        .collect();
+    let outside: Vec<&str> = [(left, "left eye"), (right, "right eye"), (m, "mouth")]
+        .into_iter()
+        .filter(|&(l, _)| {
+            let c = canonical_from_input.transform_point3(loop_centroid(vertices, &loops[l]));
+            !point_in_polygon(c.truncate(), &outline)
+        })
+        .map(|(_, name)| name)
+        .collect();
+    if !outside.is_empty() {
+        let size = |l: usize| format!("{} edges, perimeter {}", loops[l].len(), sig6(perim[l]));
+        return Err(PrepError::NotAFrontFace {
+            reason: format!(
+                "the longest loop ({}), taken as the face's outline, does not surround the {} in \
+                 the face plane (the other loops: eyes {} and {}, mouth {}); a whole head cut at \
+                 the neck looks like this",
+                size(outer),
+                outside.join(" and "),
+                size(left),
+                size(right),
+                size(m)
+            ),
+        });
+    }
     Ok((
         canonical_from_input,
         FaceLoops {
@@ -132,4 +171,16 @@ pub fn canonical_frame(
             mouth: loops[m].clone(),
         },
     ))
+}
+
+/// Whether `p` lies inside the closed polygon `poly` (even-odd rule).
+fn point_in_polygon(p: DVec2, poly: &[DVec2]) -> bool {
+    let mut inside = false;
+    for i in 0..poly.len() {
+        let (a, b) = (poly[i], poly[(i + 1) % poly.len()]);
+        if (a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) / (b.y - a.y) * (b.x - a.x) {
+            inside = !inside;
+        }
+    }
+    inside
 }
