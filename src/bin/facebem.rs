@@ -396,7 +396,12 @@ fn muscles(face: &Path, output: &Path) -> Result<()> {
 
 fn sheet(args: &SheetArgs) -> Result<()> {
     use facebem::contact_sheet::{self, Selection, SheetOptions};
-    facebem::check_output(&args.output, &[&args.rig], &["png"], "a contact sheet (PNG)")?;
+    facebem::check_output(
+        &args.output,
+        &[&args.rig],
+        &["png"],
+        "a contact sheet (PNG)",
+    )?;
     let model = model_from(&args.rig)?;
     let selection = match args.only.as_deref() {
         Some("muscles") => Selection::Muscles,
