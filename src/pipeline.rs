@@ -73,6 +73,10 @@ pub struct PrecomputeReport {
     /// physical (e.g. front and back surfaces nearly coincident: MediaPipe with offset 0.0005
     /// reaches 60; the ICT faces simulated with their rolled-in eyelids and lips, 3 to 1751).
     pub response_amplification: f64,
+    /// bem-core's estimate of the condition number of the BEM system (columns scaled to unit
+    /// 1-norm, [`bem_core::DenseLu::condition_estimate`]); solves above
+    /// [`bem_core::DEFAULT_MAX_CONDITION`] are refused.
+    pub condition_estimate: f64,
     /// Seconds spent in prep (simplification, rig).
     pub prep_seconds: f64,
     /// Seconds spent in the BEM solve (assembly, factorisation, solves).
@@ -387,6 +391,7 @@ pub fn build_face_model(
         dofs: 3 * rig.shell.triangles.len(),
         shell_self_intersections,
         response_amplification,
+        condition_estimate: solved.report.condition_estimate,
         prep_seconds,
         solve_seconds,
         transfer_seconds: t2.elapsed().as_secs_f64(),

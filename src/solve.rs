@@ -16,6 +16,8 @@ pub(crate) struct Solved {
     pub element: Vec<Vec<DVec3>>,
     /// `vertex[k][v]`: area-weighted average of the adjacent elements, per shell vertex.
     pub vertex: Vec<Vec<DVec3>>,
+    /// What bem-core measured about the solve (condition estimate, quadrature accuracy).
+    pub report: bem_core::SolveReport,
 }
 
 /// Solves the rig's BEM problem: skull elements fixed at zero, every muscle element
@@ -77,6 +79,7 @@ pub(crate) fn solve_rig(
         bem_core::BemError::Cancelled => PipelineError::Cancelled,
         e => PipelineError::Bem(e),
     })?;
+    let report = basis.report;
     let element: Vec<Vec<DVec3>> = basis
         .responses
         .into_iter()
@@ -98,5 +101,9 @@ pub(crate) fn solve_rig(
             }
         }
     }
-    Ok(Solved { element, vertex })
+    Ok(Solved {
+        element,
+        vertex,
+        report,
+    })
 }

@@ -8,6 +8,10 @@
 //!   elements because it holds two dense matrices);
 //! * LU GFLOP/s of K next to faer's `partial_piv_lu` on a random dense matrix of the same size;
 //! * peak heap bytes of assemble + factor + solve over one dense K, 8·(3N)² bytes (counting allocator).
+//!
+//! `cargo run --release -p bem-core --example bench -- rhs [N] [R ...]`: peak heap and times of
+//! assemble + factor + solve with many right-hand sides (default N = 3000 elements, R = 1, 10,
+//! 100, 1000 load cases), each load case driving its own share of the fixed elements.
 
 #![allow(unsafe_code)] // the counting global allocator below
 
@@ -77,7 +81,70 @@ fn torus_for(target: usize) -> bem_core::SurfaceMesh {
     shapes::torus(1.0, 0.35, around, tube).expect("torus is a valid closed surface")
 }
 
+/// Peak heap of assemble + factor + solve on a torus of `target` elements for each load-case count.
+fn bench_rhs(target: usize, counts: &[usize]) -> anyhow_free::Result {
+    let material = Material::new(0.45, 1.0)?;
+    let params = SolveParams::default();
+    let control = Control::default();
+    let mesh = torus_for(target);
+    let n = mesh.element_count();
+    let dof = 3 * n;
+    let prescribed: Vec<bool> = mesh.centroids().iter().map(|c| c.x < -0.55).collect();
+    let fixed: Vec<usize> = (0..n).filter(|&e| prescribed[e]).collect();
+    let k_bytes = 8.0 * (dof as f64).powi(2);
+    println!(
+        "many right-hand sides, N = {n} ({} fixed), {} rayon threads, K = {:.0} MB",
+        fixed.len(),
+        rayon::current_num_threads(),
+        k_bytes / 1e6
+    );
+    println!(
+        "{:>6} | {:>8} {:>8} | {:>9} {:>9} {:>7} | {:>9}",
+        "R", "asm s", "solve s", "peak MB", "(peak-K)", "peak/K", "rhs MB"
+    );
+    for &count in counts {
+        let mut loads = Loads::new(n, count);
+        for (k, &e) in fixed.iter().enumerate() {
+            loads.set(e, k % count, DVec3::new(0.01, 0.005, -0.002))?;
+        }
+        let baseline = CURRENT.load(Ordering::Relaxed);
+        PEAK.store(baseline, Ordering::Relaxed);
+        let t = Instant::now();
+        let sys = LinearSystem::assemble(&mesh, &material, &prescribed, &loads, &params, &control)?;
+        let t_asm = t.elapsed().as_secs_f64();
+        let t = Instant::now();
+        let solutions = sys.solve(&control)?;
+        let t_solve = t.elapsed().as_secs_f64();
+        let peak = (PEAK.load(Ordering::Relaxed) - baseline) as f64;
+        drop(solutions);
+        println!(
+            "{:>6} | {:>8.2} {:>8.2} | {:>9.0} {:>9.0} {:>7.3} | {:>9.0}",
+            count,
+            t_asm,
+            t_solve,
+            peak / 1e6,
+            (peak - k_bytes) / 1e6,
+            peak / k_bytes,
+            8.0 * dof as f64 * count as f64 / 1e6
+        );
+    }
+    println!("peak = heap high-water mark over assemble + factor + solve (counting allocator),");
+    println!("including the returned solutions and gemm's thread-local buffers on first use");
+    Ok(())
+}
+
 fn main() -> anyhow_free::Result {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    if args.first().map(String::as_str) == Some("rhs") {
+        let numbers: Vec<usize> = args[1..].iter().filter_map(|a| a.parse().ok()).collect();
+        let target = numbers.first().copied().unwrap_or(3000);
+        let counts = if numbers.len() > 1 {
+            numbers[1..].to_vec()
+        } else {
+            vec![1, 10, 100, 1000]
+        };
+        return bench_rhs(target, &counts);
+    }
     let sizes: Vec<usize> = std::env::args()
         .skip(1)
         .filter_map(|a| a.parse().ok())

@@ -19,7 +19,8 @@ use crate::kernels::{Block, KernelConstants};
 use crate::quadrature::ElementQuad;
 use crate::singular::g_diagonal;
 use crate::{
-    BemError, Control, Loads, Material, QuadratureParams, SolveParams, Stage, SurfaceMesh,
+    BemError, Control, Loads, Material, MemoryEstimate, QuadratureParams, SolveParams, Stage,
+    SurfaceMesh,
 };
 
 /// What to do with a problem that prescribes no displacement anywhere (rigid-body modes).
@@ -48,23 +49,28 @@ pub struct LinearSystem {
     pub loads: Loads,
     /// Whether six gauge rows/columns were appended.
     pub gauge_fixed: bool,
+    /// Largest accepted condition estimate of K ([`SolveParams::max_condition`]).
+    pub max_condition: f64,
 }
 
 /// Number of contiguous column ranges whose row sums are accumulated separately during assembly
 /// (enough to keep any core count busy; bounded so their memory stays a few % of K).
 const REDUCTION_RANGES: usize = 64;
 
-/// Accumulators of one column range: H row sums and right-hand sides.
+/// Accumulators of one column range: H row sums and, once a column of the range carries a load,
+/// its contributions to the right-hand sides.
 struct Partial {
     row_sums: Vec<Block>,
-    rhs: Vec<f64>,
+    rhs: Option<Vec<f64>>,
+    rhs_len: usize,
 }
 
 impl Partial {
     fn new(n: usize, dof: usize, rhs_count: usize) -> Self {
         Self {
             row_sums: vec![[[0.0; 3]; 3]; n],
-            rhs: vec![0.0; dof * rhs_count],
+            rhs: None,
+            rhs_len: dof * rhs_count,
         }
     }
 }
@@ -132,7 +138,9 @@ impl LinearSystem {
     /// displacement-prescribed (`prescribed[e] == true`) and traction-prescribed ones, with one
     /// load case per right-hand side in `loads`.
     ///
-    /// Memory: K plus, per rayon thread, 9N + 3N × (load cases) doubles.
+    /// Memory: K, the right-hand sides, and per rayon thread 9N + 3N × (load cases) doubles
+    /// ([`MemoryEstimate`]), checked first against [`SolveParams::memory_budget_bytes`]
+    /// ([`BemError::OverBudget`]).
     ///
     /// ```
     /// use bem_core::{shapes, Control, LinearSystem, Loads, Material, SolveParams};
@@ -175,16 +183,16 @@ impl LinearSystem {
                 });
             }
         }
-        let any_prescribed = prescribed.iter().any(|&p| p);
-        let gauge_fixed = match (any_prescribed, params.rigid_modes) {
-            (true, _) => false,
-            (false, RigidModes::Reject) => return Err(BemError::PureTraction),
-            (false, RigidModes::Fix) => true,
-        };
+        let gauge_fixed = check_bodies_held(mesh, prescribed, params.rigid_modes)?;
         control.check()?;
+        // assemble in coordinates relative to the mesh's centre: translation invariance
+        let local = mesh.recentred();
+        let mesh = &local;
         let dof = 3 * n;
         let size = dof + if gauge_fixed { 6 } else { 0 };
         let rhs_count = loads.rhs_count();
+        let threads = rayon::current_num_threads().max(1);
+        MemoryEstimate::new(n, size, rhs_count, threads).check(params.memory_budget_bytes)?;
         let mut matrix = DenseMatrix::zeros(size, size)?;
         let consts = KernelConstants::new(material);
         let quads: Vec<ElementQuad> = (0..n).map(|e| ElementQuad::new(mesh, e)).collect();
@@ -199,80 +207,99 @@ impl LinearSystem {
         let qp = params.quadrature;
         control.report(Stage::Assembly, 0, n);
 
-        let partials: Vec<Option<Partial>> = matrix
-            .as_mut()
-            .par_col_chunks_mut(3 * width)
-            .enumerate()
-            .map(|(k, mut range)| -> Result<Option<Partial>, BemError> {
-                let mut partial: Option<Partial> = None;
-                for l in 0..range.ncols() / 3 {
-                    control.check()?;
-                    let j = k * width + l;
-                    let cols = three_columns(range.rb_mut().subcols_mut(3 * l, 3)).ok_or(
-                        BemError::Internal {
-                            what: "a column block of K is not 3 contiguous columns",
-                        },
-                    )?;
-                    if j >= n {
-                        // gauge columns: R (rigid modes) in the displacement rows
-                        if let Some(modes) = &modes {
-                            for (c, col) in cols.into_iter().enumerate() {
-                                let mode = &modes[3 * (j - n) + c];
-                                for (e, v) in mode.iter().enumerate() {
-                                    col[3 * e..3 * e + 3].copy_from_slice(&v.to_array());
+        // The ranges are assembled in waves of one range per thread, and each wave's partials
+        // are added to the totals (in range order) before the next wave starts: at most
+        // threads + 1 right-hand-side buffers (the partials of one wave and `rhs`) are alive.
+        let chunk_cols = 3 * width;
+        let chunks = size.div_ceil(chunk_cols);
+        let mut row_sums: Vec<Block> = vec![[[0.0; 3]; 3]; n];
+        let mut rhs = try_zeros(size, rhs_count)?;
+        let mut first = 0;
+        while first < chunks {
+            let last = (first + threads).min(chunks);
+            let c0 = first * chunk_cols;
+            let c1 = (last * chunk_cols).min(size);
+            let partials: Vec<Option<Partial>> = matrix
+                .as_mut()
+                .subcols_mut(c0, c1 - c0)
+                .par_col_chunks_mut(chunk_cols)
+                .enumerate()
+                .map(|(kk, mut range)| -> Result<Option<Partial>, BemError> {
+                    let k = first + kk;
+                    let mut partial: Option<Partial> = None;
+                    for l in 0..range.ncols() / 3 {
+                        control.check()?;
+                        let j = k * width + l;
+                        let cols = three_columns(range.rb_mut().subcols_mut(3 * l, 3)).ok_or(
+                            BemError::Internal {
+                                what: "a column block of K is not 3 contiguous columns",
+                            },
+                        )?;
+                        if j >= n {
+                            // gauge columns: R (rigid modes) in the displacement rows
+                            if let Some(modes) = &modes {
+                                for (c, col) in cols.into_iter().enumerate() {
+                                    let mode = &modes[3 * (j - n) + c];
+                                    for (e, v) in mode.iter().enumerate() {
+                                        col[3 * e..3 * e + 3].copy_from_slice(&v.to_array());
+                                    }
                                 }
                             }
+                            continue;
                         }
-                        continue;
+                        let partial =
+                            partial.get_or_insert_with(|| Partial::new(n, dof, rhs_count));
+                        assemble_column(
+                            j,
+                            cols,
+                            &quads,
+                            centroids,
+                            &consts,
+                            &qp,
+                            prescribed[j],
+                            loads.of(j),
+                            mesh,
+                            material,
+                            partial,
+                            dof,
+                            modes.as_ref(),
+                        )?;
+                        let d = done.fetch_add(1, Ordering::Relaxed) + 1;
+                        if d.is_multiple_of(step) || d == n {
+                            control.report(Stage::Assembly, d, n);
+                        }
                     }
-                    let partial = partial.get_or_insert_with(|| Partial::new(n, dof, rhs_count));
-                    assemble_column(
-                        j,
-                        cols,
-                        &quads,
-                        centroids,
-                        &consts,
-                        &qp,
-                        prescribed[j],
-                        loads.of(j),
-                        mesh,
-                        material,
-                        partial,
-                        dof,
-                        modes.as_ref(),
-                    )?;
-                    let d = done.fetch_add(1, Ordering::Relaxed) + 1;
-                    if d.is_multiple_of(step) || d == n {
-                        control.report(Stage::Assembly, d, n);
+                    Ok(partial)
+                })
+                .collect::<Result<_, _>>()?;
+            // add this wave's partials in range order (the same order whatever the wave size)
+            for p in partials.into_iter().flatten() {
+                for (t, s) in row_sums.iter_mut().zip(&p.row_sums) {
+                    for a in 0..3 {
+                        for b in 0..3 {
+                            t[a][b] += s[a][b];
+                        }
                     }
                 }
-                Ok(partial)
-            })
-            .collect::<Result<_, _>>()?;
-
-        // reduce the partials in range order
-        let mut total = Partial::new(n, dof, rhs_count);
-        for p in partials.into_iter().flatten() {
-            for (t, s) in total.row_sums.iter_mut().zip(&p.row_sums) {
-                for a in 0..3 {
-                    for b in 0..3 {
-                        t[a][b] += s[a][b];
+                if let Some(y) = &p.rhs {
+                    for (r, part) in y.chunks_exact(dof.max(1)).enumerate() {
+                        let col =
+                            rhs.col_mut(r)
+                                .try_as_col_major_mut()
+                                .ok_or(BemError::Internal {
+                                    what: "a right-hand side is not a contiguous column",
+                                })?;
+                        for (t, s) in col.as_slice_mut().iter_mut().zip(part) {
+                            *t += s;
+                        }
                     }
                 }
             }
-            for (t, s) in total.rhs.iter_mut().zip(&p.rhs) {
-                *t += s;
-            }
+            first = last;
         }
         // diagonal H blocks: into K for traction-prescribed elements, into y for the others
-        let mut rhs = try_zeros(size, rhs_count)?;
-        for r in 0..rhs_count {
-            for (row, v) in total.rhs[r * dof..(r + 1) * dof].iter().enumerate() {
-                rhs[(row, r)] = *v;
-            }
-        }
         for i in 0..n {
-            let s = total.row_sums[i];
+            let s = row_sums[i];
             let h_ii: Block = std::array::from_fn(|a| std::array::from_fn(|b| -s[a][b]));
             if prescribed[i] {
                 for &(r, u) in loads.of(i) {
@@ -297,7 +324,42 @@ impl LinearSystem {
             prescribed: prescribed.to_vec(),
             loads: loads.clone(),
             gauge_fixed,
+            max_condition: params.max_condition,
         })
+    }
+}
+
+/// Every body must be held: some element of it displacement-prescribed. A problem with nothing
+/// prescribed at all is rejected ([`BemError::PureTraction`]) or, with [`RigidModes::Fix`] and a
+/// single body, gauge-fixed (returns true); otherwise a body without prescribed displacement is a
+/// [`BemError::FloatingBody`].
+fn check_bodies_held(
+    mesh: &SurfaceMesh,
+    prescribed: &[bool],
+    rigid_modes: RigidModes,
+) -> Result<bool, BemError> {
+    let bodies = mesh.body_count();
+    if !prescribed.iter().any(|&p| p) {
+        match rigid_modes {
+            RigidModes::Reject => return Err(BemError::PureTraction),
+            RigidModes::Fix if bodies <= 1 => return Ok(true),
+            RigidModes::Fix => {} // six gauge conditions cannot hold several bodies
+        }
+    }
+    let mut held = vec![false; bodies];
+    let mut first = vec![usize::MAX; bodies];
+    for (e, &p) in prescribed.iter().enumerate() {
+        let b = mesh.body(e);
+        held[b] |= p;
+        first[b] = first[b].min(e);
+    }
+    match held.iter().position(|&h| !h) {
+        Some(body) => Err(BemError::FloatingBody {
+            body,
+            element: first[body],
+            bodies,
+        }),
+        None => Ok(false),
     }
 }
 
@@ -322,13 +384,18 @@ fn assemble_column(
     let q = &quads[j];
     let need_u = is_prescribed || !values.is_empty();
     let n = quads.len();
+    let rhs_len = partial.rhs_len;
+    let (row_sums, mut rhs) = (
+        &mut partial.row_sums,
+        (!values.is_empty()).then(|| partial.rhs.get_or_insert_with(|| vec![0.0; rhs_len])),
+    );
     for (i, &p) in centroids.iter().enumerate().take(n) {
         if i == j {
             continue;
         }
         let m = q.moments(p, qp, need_u);
         let h = consts.t_block(&m, q.normal);
-        let rs = &mut partial.row_sums[i];
+        let rs = &mut row_sums[i];
         for a in 0..3 {
             for b in 0..3 {
                 rs[a][b] += h[a][b];
@@ -342,10 +409,12 @@ fn assemble_column(
                 c1[row + a] = -g[a][1];
                 c2[row + a] = -g[a][2];
             }
-            for &(r, u) in values {
-                let y = &mut partial.rhs[r as usize * dof + row..r as usize * dof + row + 3];
-                for a in 0..3 {
-                    y[a] -= h[a][0] * u.x + h[a][1] * u.y + h[a][2] * u.z;
+            if let Some(rhs) = rhs.as_deref_mut() {
+                for &(r, u) in values {
+                    let y = &mut rhs[r as usize * dof + row..r as usize * dof + row + 3];
+                    for a in 0..3 {
+                        y[a] -= h[a][0] * u.x + h[a][1] * u.y + h[a][2] * u.z;
+                    }
                 }
             }
         } else {
@@ -354,10 +423,10 @@ fn assemble_column(
                 c1[row + a] = h[a][1];
                 c2[row + a] = h[a][2];
             }
-            if !values.is_empty() {
+            if let Some(rhs) = rhs.as_deref_mut() {
                 let g = consts.u_block(&m);
                 for &(r, t) in values {
-                    let y = &mut partial.rhs[r as usize * dof + row..r as usize * dof + row + 3];
+                    let y = &mut rhs[r as usize * dof + row..r as usize * dof + row + 3];
                     for a in 0..3 {
                         y[a] += g[a][0] * t.x + g[a][1] * t.y + g[a][2] * t.z;
                     }
@@ -377,9 +446,9 @@ fn assemble_column(
                 c1[row + a] = -g[a][1];
                 c2[row + a] = -g[a][2];
             }
-        } else {
+        } else if let Some(rhs) = rhs {
             for &(r, t) in values {
-                let y = &mut partial.rhs[r as usize * dof + row..r as usize * dof + row + 3];
+                let y = &mut rhs[r as usize * dof + row..r as usize * dof + row + 3];
                 for a in 0..3 {
                     y[a] += g[a][0] * t.x + g[a][1] * t.y + g[a][2] * t.z;
                 }
@@ -408,6 +477,8 @@ pub fn assemble_h_g(
     params: &QuadratureParams,
 ) -> Result<(Mat<f64>, Mat<f64>), BemError> {
     use crate::kernels::{kelvin_t, kelvin_u};
+    let local = mesh.recentred();
+    let mesh = &local;
     let n = mesh.element_count();
     let mut h = try_zeros(3 * n, 3 * n)?;
     let mut g = try_zeros(3 * n, 3 * n)?;

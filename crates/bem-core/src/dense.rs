@@ -14,7 +14,8 @@ use crate::{BemError, Control, DenseMatrix, Stage};
 /// Columns per panel of the blocked LU (progress and cancellation granularity).
 pub const LU_PANEL: usize = 256;
 
-/// Pivots smaller than this × n × the largest pivot mark the matrix numerically singular.
+/// Pivots smaller than this × n × the largest pivot mark the matrix numerically singular (both
+/// measured relative to the 1-norm of their column of A, so the test does not depend on units).
 const SINGULAR_PIVOT_RATIO: f64 = f64::EPSILON;
 
 /// An LU factorisation `P A = L U` of a square dense matrix, computed in place.
@@ -23,6 +24,9 @@ pub struct DenseLu {
     lu: DenseMatrix,
     perm: Vec<usize>,
     perm_inv: Vec<usize>,
+    /// 1-norm of each column of A (before factorisation): the column equilibration under which
+    /// pivots are compared and the condition number is estimated.
+    col_norms: Vec<f64>,
 }
 
 impl DenseLu {
@@ -71,6 +75,22 @@ impl DenseLu {
         if !finite {
             return Err(BemError::NonFinite {
                 what: "system matrix",
+            });
+        }
+        let col_norms: Vec<f64> = if n == 0 {
+            Vec::new()
+        } else {
+            matrix
+                .as_slice()
+                .par_chunks(n)
+                .map(|c| c.iter().map(|v| v.abs()).sum())
+                .collect()
+        };
+        if let Some(index) = col_norms.iter().position(|&c| c == 0.0) {
+            return Err(BemError::Singular {
+                index,
+                pivot: 0.0,
+                max_pivot: 0.0,
             });
         }
         let par = Par::rayon(0);
@@ -154,9 +174,11 @@ impl DenseLu {
             k += nb;
         }
         control.report(Stage::Factorisation, n, n);
+        // pivots of the column-equilibrated matrix A D, D = diag(1 / ‖a_k‖₁): partial pivoting
+        // chooses the same rows for A and A D, whose U is U D
         let (mut min, mut min_index, mut max) = (f64::INFINITY, 0, 0.0f64);
         for k in 0..n {
-            let p = matrix[(k, k)].abs();
+            let p = matrix[(k, k)].abs() / col_norms[k];
             if !p.is_finite() {
                 // finite input, non-finite factor: a zero pivot was divided by
                 return Err(BemError::Singular {
@@ -186,6 +208,7 @@ impl DenseLu {
             lu: matrix,
             perm,
             perm_inv,
+            col_norms,
         })
     }
 
@@ -219,5 +242,118 @@ impl DenseLu {
             return Err(BemError::NonFinite { what: "solution" });
         }
         Ok(())
+    }
+
+    /// Solves `Aᵀ X = B` for all columns of `rhs` at once, overwriting `rhs` with X.
+    pub fn solve_transpose_in_place(&self, mut rhs: MatMut<'_, f64>) -> Result<(), BemError> {
+        let n = self.dim();
+        if rhs.nrows() != n {
+            return Err(BemError::WrongLength {
+                what: "rows of the right-hand side",
+                expected: n,
+                got: rhs.nrows(),
+            });
+        }
+        let par = Par::rayon(0);
+        let mut buf = MemBuffer::new(solve::solve_transpose_in_place_scratch::<usize, f64>(
+            n,
+            rhs.ncols(),
+            par,
+        ));
+        let stack = MemStack::new(&mut buf);
+        let perm = PermRef::new_checked(&self.perm, &self.perm_inv, n);
+        let lu = self.lu.as_ref();
+        solve::solve_transpose_in_place(lu, lu, perm, rhs.rb_mut(), par, stack);
+        let finite = rhs.rb().col_iter().all(|c| c.iter().all(|v| v.is_finite()));
+        if !finite {
+            return Err(BemError::NonFinite { what: "solution" });
+        }
+        Ok(())
+    }
+
+    /// Estimate of the 1-norm condition number `κ₁(A D) = ‖A D‖₁ ‖(A D)⁻¹‖₁` of the matrix with
+    /// its columns scaled to unit 1-norm (`D = diag(1/‖a_k‖₁)`, so `‖A D‖₁ = 1`), by the
+    /// Hager–Higham estimator (Higham 1988, LAPACK's `xLACN2`): a handful of solves with A and
+    /// Aᵀ, O(n²) each. The estimate is a lower bound of the true κ₁, usually within a factor 3.
+    ///
+    /// The column scaling makes it independent of the units of the unknowns (in the BEM,
+    /// displacement columns are dimensionless and traction columns carry length / modulus), and by
+    /// van der Sluis' theorem it is within √n of the best κ₁ over all column scalings. `κ · ε`
+    /// bounds the relative error the LU introduces into a solution: 1e8 costs 8 of 16 digits.
+    ///
+    /// ```
+    /// let a = faer::mat![[1.0, 1.0], [1.0, 1.0 + 1e-9]];
+    /// let lu = bem_core::DenseLu::factor(a).unwrap();
+    /// let kappa = lu.condition_estimate().unwrap();
+    /// assert!(kappa > 1e9 && kappa < 1e10);
+    /// ```
+    pub fn condition_estimate(&self) -> Result<f64, BemError> {
+        let n = self.dim();
+        if n == 0 {
+            return Ok(0.0);
+        }
+        let norms = &self.col_norms;
+        // B = D⁻¹ A⁻¹:  B x = diag(norms) A⁻¹ x,  Bᵀ y = A⁻ᵀ diag(norms) y
+        let apply = |x: &[f64]| -> Result<Vec<f64>, BemError> {
+            let mut m = faer::Mat::<f64>::from_fn(n, 1, |i, _| x[i]);
+            self.solve_in_place(m.as_mut())?;
+            Ok((0..n).map(|i| m[(i, 0)] * norms[i]).collect())
+        };
+        let apply_t = |y: &[f64]| -> Result<Vec<f64>, BemError> {
+            let mut m = faer::Mat::<f64>::from_fn(n, 1, |i, _| y[i] * norms[i]);
+            self.solve_transpose_in_place(m.as_mut())?;
+            Ok((0..n).map(|i| m[(i, 0)]).collect())
+        };
+        let norm1 = |v: &[f64]| v.iter().map(|x| x.abs()).sum::<f64>();
+        let sign = |v: &[f64]| -> Vec<f64> {
+            v.iter()
+                .map(|&x| if x >= 0.0 { 1.0 } else { -1.0 })
+                .collect()
+        };
+        let argmax = |v: &[f64]| -> usize {
+            let mut best = 0;
+            for (i, x) in v.iter().enumerate() {
+                if x.abs() > v[best].abs() {
+                    best = i;
+                }
+            }
+            best
+        };
+        let y = apply(&vec![1.0 / n as f64; n])?;
+        let mut estimate = norm1(&y);
+        if n > 1 {
+            let mut xi = sign(&y);
+            let mut z = apply_t(&xi)?;
+            let mut j = argmax(&z);
+            for _ in 0..4 {
+                let mut e = vec![0.0; n];
+                e[j] = 1.0;
+                let y = apply(&e)?;
+                let previous = estimate;
+                estimate = norm1(&y);
+                let new_xi = sign(&y);
+                if new_xi == xi || estimate <= previous {
+                    estimate = estimate.max(previous);
+                    break;
+                }
+                xi = new_xi;
+                z = apply_t(&xi)?;
+                let last = j;
+                j = argmax(&z);
+                if z[j].abs() == z[last].abs() {
+                    break;
+                }
+            }
+            // Higham's extra vector guards against the rare matrices that fool the iteration
+            let alt: Vec<f64> = (0..n)
+                .map(|i| {
+                    let s = if i % 2 == 0 { 1.0 } else { -1.0 };
+                    s * (1.0 + i as f64 / (n - 1) as f64)
+                })
+                .collect();
+            let y = apply(&alt)?;
+            estimate = estimate.max(2.0 * norm1(&y) / (3.0 * n as f64));
+        }
+        Ok(estimate)
     }
 }

@@ -139,6 +139,30 @@ pub enum BemError {
         "no element has a prescribed displacement: the pure-traction problem is singular (rigid-body modes); prescribe a displacement somewhere or set SolveParams::rigid_modes = RigidModes::Fix"
     )]
     PureTraction,
+    /// A separate body (see [`crate::SurfaceMesh::body`]) has no displacement-prescribed element:
+    /// nothing holds it, its rigid motions are free and the system is singular.
+    #[error(
+        "body {body} of {bodies} (the surface component containing element {element}) has no prescribed displacement: nothing holds it, so its rigid-body motion is undetermined; prescribe a displacement on it"
+    )]
+    FloatingBody {
+        /// Index of the body.
+        body: usize,
+        /// Its first element.
+        element: usize,
+        /// Number of bodies in the mesh.
+        bodies: usize,
+    },
+    /// The estimated condition number of the system matrix exceeds the accepted limit
+    /// ([`crate::SolveParams::max_condition`]): the answer would be dominated by rounding.
+    #[error(
+        "the system is near-singular: estimated condition number {estimate:.2e} (columns scaled to unit 1-norm) is above the limit {limit:.1e}; e.g. surfaces nearly touching or a body barely held"
+    )]
+    IllConditioned {
+        /// Hager–Higham estimate of κ₁ of the column-equilibrated matrix.
+        estimate: f64,
+        /// The limit it exceeded.
+        limit: f64,
+    },
     /// The system matrix is numerically singular.
     #[error(
         "the system matrix is numerically singular: pivot {index} has magnitude {pivot:e} against largest pivot {max_pivot:e}"
@@ -166,6 +190,21 @@ pub enum BemError {
         cols: usize,
         /// Bytes requested.
         bytes: usize,
+    },
+    /// The dense solve would need more memory than the budget
+    /// ([`crate::SolveParams::memory_budget_bytes`], by default the memory available).
+    #[error(
+        "the dense solve needs {needed_bytes} bytes (K {matrix_bytes}, right-hand sides {rhs_bytes}, buffers the rest) but the memory budget is {budget_bytes} bytes; use fewer elements or load cases"
+    )]
+    OverBudget {
+        /// Peak bytes the assembly and solve would hold ([`crate::MemoryEstimate::total`]).
+        needed_bytes: u64,
+        /// The budget.
+        budget_bytes: u64,
+        /// Of which K.
+        matrix_bytes: u64,
+        /// Of which the right-hand sides.
+        rhs_bytes: u64,
     },
     /// An internal invariant failed (a bug in bem-core, please report it).
     #[error("internal error: {what}")]

@@ -13,7 +13,9 @@
 //! precomputes the response to each of several displacement groups so that any combination is an
 //! exact linear sum.
 //!
-//! Memory: one dense K (8·(3N)² bytes) plus O(N · load cases); H and G are never held.
+//! Memory: one dense K (8·(3N)² bytes) plus the right-hand sides and (threads + 1)·3N·(load
+//! cases) doubles of assembly buffers ([`MemoryEstimate`]); H and G are never held. The total is
+//! checked against a budget before anything large is allocated ([`BemError::OverBudget`]).
 //! Benchmark (assembly, LU rate, peak memory at ~1000/3000/5000 elements):
 //! `cargo run --release -p bem-core --example bench`.
 //!
@@ -45,6 +47,8 @@
 
 mod assembly;
 mod bc;
+mod bodies;
+mod budget;
 mod control;
 pub mod dense;
 mod error;
@@ -61,6 +65,7 @@ mod vertex;
 
 pub use assembly::{LinearSystem, RigidModes, assemble_h_g};
 pub use bc::{BoundaryCondition, Loads};
+pub use budget::MemoryEstimate;
 pub use control::{Control, Progress, Stage};
 pub use dense::DenseLu;
 pub use error::{BemError, MeshError};
@@ -69,7 +74,7 @@ pub use matrix::DenseMatrix;
 pub use mesh::SurfaceMesh;
 pub use quadrature::QuadratureParams;
 pub use response::{DisplacementGroup, ResponseBasis};
-pub use solve::{Solution, SolveParams, solve};
+pub use solve::{DEFAULT_MAX_CONDITION, Solution, SolveParams, SolveReport, solve};
 pub use vertex::element_to_vertex;
 
 pub use faer;

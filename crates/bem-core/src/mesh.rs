@@ -23,6 +23,22 @@ pub struct SurfaceMesh {
     normals: Vec<DVec3>,
     areas: Vec<f64>,
     longest_edges: Vec<f64>,
+    /// Centre of the bounding box: the solver works in coordinates relative to it
+    /// ([`SurfaceMesh::recentred`]), so that translating a problem changes nothing.
+    origin: DVec3,
+    /// Body of each element ([`SurfaceMesh::body`]).
+    body: Vec<u32>,
+}
+
+/// Centre of the axis-aligned bounding box of `vertices` (zero when there is none).
+fn bounding_box_centre(vertices: &[DVec3]) -> DVec3 {
+    let Some(first) = vertices.first() else {
+        return DVec3::ZERO;
+    };
+    let (lo, hi) = vertices
+        .iter()
+        .fold((*first, *first), |(lo, hi), v| (lo.min(*v), hi.max(*v)));
+    0.5 * (lo + hi)
 }
 
 impl SurfaceMesh {
@@ -47,6 +63,10 @@ impl SurfaceMesh {
             });
         }
         let n = triangles.len();
+        // every geometric check below works relative to the bounding-box centre: a mesh far from
+        // the coordinate origin (e.g. translated by 1e7) is validated like the same mesh at 0
+        let origin = bounding_box_centre(&vertices);
+        let local: Vec<DVec3> = vertices.iter().map(|v| *v - origin).collect();
         let mut centroids = Vec::with_capacity(n);
         let mut normals = Vec::with_capacity(n);
         let mut areas = Vec::with_capacity(n);
@@ -83,24 +103,22 @@ impl SurfaceMesh {
             longest_edges.push(longest);
         }
         check_closed_manifold_oriented(&triangles)?;
-        let volume: f64 = triangles
-            .iter()
-            .map(|tri| {
-                let [a, b, c] = tri.map(|i| vertices[i as usize]);
-                a.dot(b.cross(c)) / 6.0
-            })
-            .sum();
+        let volume = signed_volume(&local, &triangles);
         if volume.is_nan() || volume <= 0.0 {
             return Err(MeshError::NotOutward { volume });
         }
+        let local_centroids: Vec<DVec3> = centroids.iter().map(|c| *c - origin).collect();
+        let component = crate::bodies::components(vertices.len(), &triangles);
         check_components_outward(
-            &vertices,
+            &local,
             &triangles,
-            &centroids,
+            &component,
+            &local_centroids,
             &normals,
             &areas,
             &longest_edges,
         )?;
+        let body = crate::bodies::bodies(&local, &triangles, &component, &local_centroids, &areas);
         Ok(Self {
             vertices,
             triangles,
@@ -108,7 +126,44 @@ impl SurfaceMesh {
             normals,
             areas,
             longest_edges,
+            origin,
+            body,
         })
+    }
+
+    /// The same (already validated) mesh translated so that its bounding-box centre is at the
+    /// origin, with centroids, normals, areas and edges recomputed from the shifted vertices.
+    ///
+    /// The solver assembles in these coordinates: subtracting the centre is exact for
+    /// coordinates within a factor two of it (Sterbenz), so a problem translated far from the
+    /// origin gives the same element geometry, and the same solution, as the original.
+    pub(crate) fn recentred(&self) -> Self {
+        let origin = self.origin;
+        let vertices: Vec<DVec3> = self.vertices.iter().map(|v| *v - origin).collect();
+        let n = self.triangles.len();
+        let mut centroids = Vec::with_capacity(n);
+        let mut normals = Vec::with_capacity(n);
+        let mut areas = Vec::with_capacity(n);
+        let mut longest_edges = Vec::with_capacity(n);
+        for tri in &self.triangles {
+            let [a, b, c] = tri.map(|i| vertices[i as usize]);
+            let cross = (b - a).cross(c - a);
+            let area = 0.5 * cross.length();
+            centroids.push((a + b + c) / 3.0);
+            normals.push(cross / (2.0 * area));
+            areas.push(area);
+            longest_edges.push((b - a).length().max((c - b).length()).max((a - c).length()));
+        }
+        Self {
+            origin: bounding_box_centre(&vertices),
+            body: self.body.clone(),
+            vertices,
+            triangles: self.triangles.clone(),
+            centroids,
+            normals,
+            areas,
+            longest_edges,
+        }
     }
 
     /// Number of elements (triangles).
@@ -166,16 +221,39 @@ impl SurfaceMesh {
         self.longest_edges[e]
     }
 
-    /// Enclosed volume (positive for a valid mesh).
-    pub fn volume(&self) -> f64 {
-        self.triangles
-            .iter()
-            .map(|tri| {
-                let [a, b, c] = tri.map(|i| self.vertices[i as usize]);
-                a.dot(b.cross(c)) / 6.0
-            })
-            .sum()
+    /// Number of separate elastic bodies: connected surface components, with each cavity (an
+    /// inward-facing component) counted with the body whose outer surface encloses it.
+    ///
+    /// ```
+    /// use bem_core::shapes;
+    /// assert_eq!(shapes::hollow_sphere(1.0, 2.0, 1).unwrap().body_count(), 1);
+    /// ```
+    pub fn body_count(&self) -> usize {
+        self.body.iter().map(|&b| b as usize + 1).max().unwrap_or(0)
     }
+
+    /// Body of element `e` (0-based, numbered in order of their first element).
+    pub fn body(&self, e: usize) -> usize {
+        self.body[e] as usize
+    }
+
+    /// Enclosed volume (positive for a valid mesh), computed relative to the bounding-box centre
+    /// so that it does not depend on where the mesh is.
+    pub fn volume(&self) -> f64 {
+        let local: Vec<DVec3> = self.vertices.iter().map(|v| *v - self.origin).collect();
+        signed_volume(&local, &self.triangles)
+    }
+}
+
+/// Signed enclosed volume (sum of tetrahedra with the coordinate origin).
+fn signed_volume(vertices: &[DVec3], triangles: &[[u32; 3]]) -> f64 {
+    triangles
+        .iter()
+        .map(|tri| {
+            let [a, b, c] = tri.map(|i| vertices[i as usize]);
+            a.dot(b.cross(c)) / 6.0
+        })
+        .sum()
 }
 
 /// Every undirected edge must be used exactly twice, once in each direction.
@@ -242,7 +320,7 @@ fn check_closed_manifold_oriented(triangles: &[[u32; 3]]) -> Result<(), MeshErro
 
 /// Generalised winding number of the closed surface at `p` (1 inside, 0 outside for an
 /// outward-oriented surface), from the solid angles of the triangles (Van Oosterom–Strackee).
-fn winding_number(vertices: &[DVec3], triangles: &[[u32; 3]], p: DVec3) -> f64 {
+pub(crate) fn winding_number(vertices: &[DVec3], triangles: &[[u32; 3]], p: DVec3) -> f64 {
     let mut total = 0.0;
     for tri in triangles {
         let [a, b, c] = tri.map(|i| vertices[i as usize] - p);
@@ -260,41 +338,16 @@ fn winding_number(vertices: &[DVec3], triangles: &[[u32; 3]], p: DVec3) -> f64 {
 fn check_components_outward(
     vertices: &[DVec3],
     triangles: &[[u32; 3]],
+    component: &[u32],
     centroids: &[DVec3],
     normals: &[DVec3],
     areas: &[f64],
     longest: &[f64],
 ) -> Result<(), MeshError> {
-    // union-find over vertices
-    let mut parent: Vec<u32> = (0..vertices.len() as u32).collect();
-    fn find(parent: &mut [u32], mut x: u32) -> u32 {
-        while parent[x as usize] != x {
-            parent[x as usize] = parent[parent[x as usize] as usize];
-            x = parent[x as usize];
-        }
-        x
-    }
-    for tri in triangles {
-        let r0 = find(&mut parent, tri[0]);
-        for &v in &tri[1..] {
-            let r = find(&mut parent, v);
-            parent[r as usize] = r0;
-        }
-    }
-    // largest triangle of each component
-    let mut best: HashMap<u32, usize> = HashMap::new();
-    for (t, tri) in triangles.iter().enumerate() {
-        let root = find(&mut parent, tri[0]);
-        let entry = best.entry(root).or_insert(t);
-        if areas[t] > areas[*entry] {
-            *entry = t;
-        }
-    }
-    if best.len() < 2 {
+    let picks = crate::bodies::largest_triangles(component, areas);
+    if picks.len() < 2 {
         return Ok(()); // one component: the positive volume already decides
     }
-    let mut picks: Vec<usize> = best.into_values().collect();
-    picks.sort_unstable();
     for t in picks {
         // 1% of the triangle's size off its centroid: its own solid angle is ≈ 2π on the near side
         let p = centroids[t] + normals[t] * (0.01 * (2.0 * areas[t]).sqrt().min(longest[t]));

@@ -2,7 +2,10 @@
 
 use glam::DVec3;
 
-use crate::{BemError, Control, LinearSystem, Loads, Material, Solution, SolveParams, SurfaceMesh};
+use crate::{
+    BemError, Control, LinearSystem, Loads, Material, Solution, SolveParams, SolveReport,
+    SurfaceMesh,
+};
 
 /// A displacement pattern on some displacement-prescribed elements: `(element, displacement)`.
 pub type DisplacementGroup = Vec<(usize, DVec3)>;
@@ -16,6 +19,9 @@ pub type DisplacementGroup = Vec<(usize, DVec3)>;
 pub struct ResponseBasis {
     /// One solution per group (u on every element, t on every element; t = 0 on free ones).
     pub responses: Vec<Solution>,
+    /// What the solver measured about the trustworthiness of the responses.
+    #[serde(default)]
+    pub report: SolveReport,
 }
 
 impl ResponseBasis {
@@ -74,9 +80,8 @@ impl ResponseBasis {
             }
         }
         let system = LinearSystem::assemble(mesh, material, prescribed, &loads, params, control)?;
-        Ok(Self {
-            responses: system.solve(control)?,
-        })
+        let (responses, report) = system.solve_with_report(control)?;
+        Ok(Self { responses, report })
     }
 
     /// Number of groups.

@@ -88,9 +88,16 @@ pub fn g_singular(corners: [DVec3; 3], p: DVec3, material: &Material) -> Option<
 }
 
 /// Diagonal G block of element `e` (collocation node = its centroid).
+///
+/// Computed in coordinates relative to the element's first corner, so the result depends only on
+/// the element's shape, not on where it is (a centroid rounded at 1e7 would otherwise fail the
+/// in-plane check).
 pub fn g_diagonal(mesh: &SurfaceMesh, e: usize, material: &Material) -> Option<Block> {
     if e >= mesh.element_count() {
         return None;
     }
-    g_singular(mesh.corners(e), mesh.centroid(e), material)
+    let c = mesh.corners(e);
+    let local = c.map(|v| v - c[0]);
+    let centroid = (local[0] + local[1] + local[2]) / 3.0;
+    g_singular(local, centroid, material)
 }

@@ -2,18 +2,58 @@
 
 use glam::DVec3;
 
+use crate::budget::SOLVE_BLOCK;
 use crate::{
     BemError, BoundaryCondition, Control, DenseLu, LinearSystem, Loads, Material, QuadratureParams,
     RigidModes, Stage, SurfaceMesh,
 };
 
+/// Default of [`SolveParams::max_condition`]: solves whose estimated condition number (columns
+/// scaled to unit 1-norm, [`crate::DenseLu::condition_estimate`]) exceeds 1e8 are refused.
+///
+/// Measured: healthy problems 3e2 (two held spheres) to 8e3 (the bundled faces: MediaPipe 2.5e3,
+/// ICT 2500 7.8e3, Lee Perry-Smith 6.3e3); a paper-thin face shell (MediaPipe at offset 0.0005,
+/// responses 27× the muscles' motion) 8.9e5; ICT simulated with its rolled-in lids and lips
+/// 4.9e4; a sphere that nothing holds next to a fixed one 1.5e9 (at 80 elements each; the
+/// finer the mesh the more exactly singular). At κ = 1e8 the LU alone may cost 8 of 16 digits
+/// and the discretisation error is amplified accordingly.
+pub const DEFAULT_MAX_CONDITION: f64 = 1e8;
+
 /// Parameters of a solve.
-#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize, serde::Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct SolveParams {
     /// Quadrature of the off-diagonal blocks.
     pub quadrature: QuadratureParams,
     /// Pure-traction problems: reject (default) or fix the rigid modes.
     pub rigid_modes: RigidModes,
+    /// Largest accepted condition estimate ([`crate::DenseLu::condition_estimate`]) of K; above
+    /// it the solve fails with [`BemError::IllConditioned`]. Default [`DEFAULT_MAX_CONDITION`];
+    /// `f64::INFINITY` accepts anything.
+    pub max_condition: f64,
+    /// Memory the assembly and solve may use, in bytes ([`crate::MemoryEstimate`]); above it
+    /// [`LinearSystem::assemble`] fails with [`BemError::OverBudget`] before allocating K.
+    /// `None` (default): the memory the operating system reports available (Linux
+    /// `MemAvailable`; unchecked where unknown).
+    pub memory_budget_bytes: Option<u64>,
+}
+
+impl Default for SolveParams {
+    fn default() -> Self {
+        Self {
+            quadrature: QuadratureParams::default(),
+            rigid_modes: RigidModes::default(),
+            max_condition: DEFAULT_MAX_CONDITION,
+            memory_budget_bytes: None,
+        }
+    }
+}
+
+/// What the solver measured about the trustworthiness of its answer.
+#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize, serde::Deserialize)]
+pub struct SolveReport {
+    /// Hager–Higham estimate of the 1-norm condition number of K with unit-1-norm columns
+    /// ([`crate::DenseLu::condition_estimate`]).
+    pub condition_estimate: f64,
 }
 
 /// Displacement and traction on every element (at its centroid) for one load case.
@@ -27,24 +67,50 @@ pub struct Solution {
 
 impl LinearSystem {
     /// Factorises K (consuming it) and solves all load cases together.
+    ///
+    /// Fails with [`BemError::IllConditioned`] when the condition estimate of K exceeds the
+    /// limit the system was assembled with ([`SolveParams::max_condition`]).
     pub fn solve(self, control: &Control<'_>) -> Result<Vec<Solution>, BemError> {
+        Ok(self.solve_with_report(control)?.0)
+    }
+
+    /// [`LinearSystem::solve`], also returning the condition estimate.
+    pub fn solve_with_report(
+        self,
+        control: &Control<'_>,
+    ) -> Result<(Vec<Solution>, SolveReport), BemError> {
         let LinearSystem {
             matrix,
             mut rhs,
             prescribed,
             loads,
+            max_condition,
             ..
         } = self;
         control.check()?;
         let lu = DenseLu::factor_with(matrix, control)?;
         control.check()?;
+        let condition_estimate = lu.condition_estimate()?;
+        if condition_estimate.is_nan() || condition_estimate > max_condition {
+            return Err(BemError::IllConditioned {
+                estimate: condition_estimate,
+                limit: max_condition,
+            });
+        }
         let count = rhs.ncols();
         control.report(Stage::Solve, 0, count);
-        lu.solve_in_place(rhs.as_mut())?;
+        // in blocks of right-hand sides: the solve's scratch copy stays one block
+        let mut start = 0;
+        while start < count {
+            let width = SOLVE_BLOCK.min(count - start);
+            lu.solve_in_place(rhs.as_mut().subcols_mut(start, width))?;
+            start += width;
+            control.report(Stage::Solve, start, count);
+        }
         drop(lu);
         control.report(Stage::Solve, count, count);
         let n = prescribed.len();
-        Ok((0..count)
+        let solutions = (0..count)
             .map(|r| {
                 let mut displacement = Vec::with_capacity(n);
                 let mut traction = Vec::with_capacity(n);
@@ -64,7 +130,8 @@ impl LinearSystem {
                     traction,
                 }
             })
-            .collect())
+            .collect();
+        Ok((solutions, SolveReport { condition_estimate }))
     }
 }
 
