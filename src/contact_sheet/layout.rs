@@ -3,6 +3,7 @@
 
 use super::heat;
 use super::image::RgbImage;
+use super::raster::Arrows;
 use super::text::{GLYPH_PX, draw_text, fit, text_width};
 
 /// Space around and between cells, in pixels.
@@ -129,7 +130,8 @@ impl SheetLayout {
     }
 
     /// Draws the title and the colour-bar legend of the fixed heat scale.
-    pub fn draw_header(&self, img: &mut RgbImage, title: &str) {
+    /// With `arrows`, a note on the arrows' exaggeration follows the colour bar.
+    pub fn draw_header(&self, img: &mut RgbImage, title: &str, arrows: Option<&Arrows>) {
         let title = fit(title, 2, self.width.saturating_sub(2 * PAD_PX));
         draw_text(img, PAD_PX, PAD_PX, &title, 2, INK);
         let bar_y = PAD_PX + 2 * GLYPH_PX + 8;
@@ -159,6 +161,22 @@ impl SheetLayout {
             let x = x0 + (i as u32 + 1) * LEGEND_BOX_PX;
             img.fill_rect(x, bar_y + LEGEND_BOX_H_PX, 1, 3, INK);
             draw_text(img, x + 2, label_y, &heat::edge_label(i), 1, INK);
+        }
+        if let Some(a) = arrows {
+            let x = x0 + (heat::COLOURS.len() as u32 + 1) * LEGEND_BOX_PX + 3 * GLYPH_PX;
+            let note = format!(
+                "arrows: direction of motion, length x{} (>= {} mm)",
+                a.exaggeration, a.min_mm
+            );
+            let note = fit(&note, 1, self.width.saturating_sub(x + PAD_PX));
+            draw_text(
+                img,
+                x,
+                bar_y + (LEGEND_BOX_H_PX - GLYPH_PX) / 2,
+                &note,
+                1,
+                INK,
+            );
         }
     }
 

@@ -37,7 +37,7 @@ use crate::{FaceModel, PoseError, WriteError, presets};
 pub use camera::{Camera, View};
 pub use image::RgbImage;
 pub use layout::{Rect, SheetLayout};
-pub use raster::Lighting;
+pub use raster::{Arrows, Lighting};
 
 /// Slider value of a muscle at full contraction (today's convention, DESIGN.md "Muscles" and
 /// [`crate::presets`]: negative contracts). The one place the sheet takes it from.
@@ -98,6 +98,8 @@ pub struct SheetOptions {
     pub mm_per_unit: Option<f64>,
     /// Light and background.
     pub lighting: Lighting,
+    /// Motion arrows over the heat map (which way the skin moved), `None` for none.
+    pub arrows: Option<Arrows>,
 }
 
 impl Default for SheetOptions {
@@ -111,6 +113,7 @@ impl Default for SheetOptions {
             margin: 0.06,
             mm_per_unit: None,
             lighting: Lighting::default(),
+            arrows: Some(Arrows::default()),
         }
     }
 }
@@ -304,10 +307,17 @@ pub fn render(
                 .collect();
             let max_mm = disp_mm.iter().copied().fold(0.0, f64::max);
             let positions = canonical(model, &posed);
+            let rot = model.rig.canonical_from_input.matrix3;
+            let displacement: Vec<DVec3> = posed
+                .iter()
+                .zip(&basis.neutral)
+                .map(|(p, q)| rot * (*p - *q))
+                .collect();
             let mesh = raster::PanelMesh {
                 positions: &positions,
                 triangles: &basis.triangles,
                 displacement_mm: &disp_mm,
+                displacement: &displacement,
             };
             let panels = cams
                 .par_iter()
@@ -319,6 +329,7 @@ pub fn render(
                         opts.panel_px,
                         opts.supersample,
                         &opts.lighting,
+                        opts.arrows.as_ref(),
                     )
                 })
                 .collect();
@@ -327,7 +338,7 @@ pub fn render(
         .collect();
 
     let mut img = RgbImage::new(layout.width, layout.height, layout::PAPER);
-    layout.draw_header(&mut img, &opts.title);
+    layout.draw_header(&mut img, &opts.title, opts.arrows.as_ref());
     for (i, (cell, (panels, max_mm))) in cells.iter().zip(&drawn).enumerate() {
         let caption = if cell.caption.is_empty() {
             format!("max {max_mm:.1} mm")

@@ -6,6 +6,10 @@
 //! colour is looked up per sample, so bin boundaries are crisp iso-lines of the interpolated
 //! magnitude. Faces are lit two-sided (a normal facing away from the camera is flipped), so
 //! rolled-in lips and lids seen from behind are shaded rather than black.
+//!
+//! The heat map shows how far the skin moved, not which way: [`Arrows`] overlays a sparse field
+//! of motion arrows (one per grid cell of the panel, on the visible surface, tail at the drawn
+//! point, pointing where the skin moved, exaggerated by a stated factor).
 
 use glam::DVec3;
 
@@ -38,6 +42,30 @@ impl Default for Lighting {
     }
 }
 
+/// The motion-arrow overlay of a panel.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Arrows {
+    /// One arrow per square of this many panel pixels (at most).
+    pub spacing_px: u32,
+    /// Drawn length ÷ projected true length of the motion.
+    pub exaggeration: f64,
+    /// Skin moving less than this many mm gets no arrow.
+    pub min_mm: f64,
+    /// Arrow colour.
+    pub colour: [u8; 3],
+}
+
+impl Default for Arrows {
+    fn default() -> Self {
+        Arrows {
+            spacing_px: 16,
+            exaggeration: 2.0,
+            min_mm: super::heat::EDGES_MM[0],
+            colour: [15, 15, 15],
+        }
+    }
+}
+
 /// What one panel draws: a posed mesh in the canonical frame with a displacement per vertex.
 pub struct PanelMesh<'a> {
     /// Posed vertex positions, canonical frame.
@@ -46,6 +74,9 @@ pub struct PanelMesh<'a> {
     pub triangles: &'a [[u32; 3]],
     /// Displacement magnitude of each vertex in mm.
     pub displacement_mm: &'a [f64],
+    /// Displacement of each vertex, canonical frame, model units (for [`Arrows`]; may be
+    /// empty: no arrows).
+    pub displacement: &'a [DVec3],
 }
 
 /// Area-weighted vertex normals (unnormalised sums are normalised; isolated vertices get +z).
@@ -66,7 +97,9 @@ pub fn vertex_normals(positions: &[DVec3], triangles: &[[u32; 3]]) -> Vec<DVec3>
         .collect()
 }
 
-/// Renders `mesh` through `camera` into a `width` × `height` panel, supersampled `ss × ss`.
+/// Renders `mesh` through `camera` into a `width` × `height` panel, supersampled `ss × ss`,
+/// with motion arrows if `arrows` is set (`mm_per_unit` converts their threshold).
+#[allow(clippy::too_many_arguments)]
 pub fn render_panel(
     mesh: &PanelMesh<'_>,
     camera: &Camera,
@@ -74,12 +107,14 @@ pub fn render_panel(
     height: u32,
     ss: u32,
     lighting: &Lighting,
+    arrows: Option<&Arrows>,
 ) -> RgbImage {
     let ss = ss.max(1);
     let (sw, sh) = (width * ss, height * ss);
     let n_samples = sw as usize * sh as usize;
     let mut depth = vec![f64::NEG_INFINITY; n_samples];
     let mut colour = vec![lighting.background.map(f64::from); n_samples];
+    let mut triangle_at = vec![u32::MAX; n_samples];
 
     let normals: Vec<DVec3> = vertex_normals(mesh.positions, mesh.triangles)
         .into_iter()
@@ -96,7 +131,7 @@ pub fn render_panel(
         })
         .collect();
 
-    for t in mesh.triangles {
+    for (ti, t) in mesh.triangles.iter().enumerate() {
         let [a, b, c] = t.map(|i| i as usize);
         if a >= screen.len() || b >= screen.len() || c >= screen.len() {
             continue;
@@ -136,6 +171,7 @@ pub fn render_panel(
                     continue;
                 }
                 depth[i] = z;
+                triangle_at[i] = ti as u32;
                 let mut n = (w0 * nrm[0] + w1 * nrm[1] + w2 * nrm[2])
                     .try_normalize()
                     .unwrap_or(DVec3::Z);
@@ -166,5 +202,147 @@ pub fn render_panel(
             img.put(x, y, acc.map(|v| (v * inv).round().clamp(0.0, 255.0) as u8));
         }
     }
+    if let Some(arrows) = arrows {
+        let at = |px: u32, py: u32| triangle_at[py as usize * sw as usize + px as usize];
+        draw_arrows(&mut img, mesh, camera, &screen, ss, arrows, at);
+    }
     img
+}
+
+/// Draws one arrow per `spacing_px` square, from the visible surface point at the square's
+/// centre, along the projected displacement interpolated there.
+fn draw_arrows(
+    img: &mut RgbImage,
+    mesh: &PanelMesh<'_>,
+    camera: &Camera,
+    screen: &[(f64, f64, f64)],
+    ss: u32,
+    arrows: &Arrows,
+    triangle_at: impl Fn(u32, u32) -> u32,
+) {
+    if mesh.displacement.len() != mesh.positions.len() {
+        return;
+    }
+    let step = arrows.spacing_px.max(4);
+    let s = f64::from(ss);
+    let (w, h) = (img.width, img.height);
+    for gy in (step / 2..h).step_by(step as usize) {
+        for gx in (step / 2..w).step_by(step as usize) {
+            // The supersample nearest the centre of pixel (gx, gy).
+            let (sx, sy) = (gx * ss + ss / 2, gy * ss + ss / 2);
+            let t = triangle_at(sx, sy);
+            let Some(tri) = mesh.triangles.get(t as usize) else {
+                continue;
+            };
+            let [a, b, c] = tri.map(|i| i as usize);
+            let (p0, p1, p2) = (screen[a], screen[b], screen[c]);
+            let (x, y) = (f64::from(sx) + 0.5, f64::from(sy) + 0.5);
+            let area = (p1.0 - p0.0) * (p2.1 - p0.1) - (p1.1 - p0.1) * (p2.0 - p0.0);
+            let w0 = ((p1.0 - x) * (p2.1 - y) - (p1.1 - y) * (p2.0 - x)) / area;
+            let w1 = ((p2.0 - x) * (p0.1 - y) - (p2.1 - y) * (p0.0 - x)) / area;
+            let w2 = 1.0 - w0 - w1;
+            let mm = w0 * mesh.displacement_mm[a]
+                + w1 * mesh.displacement_mm[b]
+                + w2 * mesh.displacement_mm[c];
+            if mm.is_nan() || mm < arrows.min_mm {
+                continue;
+            }
+            let d = camera.rotation
+                * (w0 * mesh.displacement[a]
+                    + w1 * mesh.displacement[b]
+                    + w2 * mesh.displacement[c]);
+            let k = arrows.exaggeration * camera.pixels_per_unit;
+            let tail = (x / s, y / s);
+            let head = (tail.0 + k * d.x, tail.1 - k * d.y);
+            let len = (head.0 - tail.0).hypot(head.1 - tail.1);
+            if len < 1.5 {
+                img.put(gx, gy, arrows.colour);
+                continue;
+            }
+            draw_line(img, tail, head, arrows.colour);
+            let (ux, uy) = ((tail.0 - head.0) / len, (tail.1 - head.1) / len);
+            let barb = (0.35 * len).clamp(2.0, 5.0);
+            for angle in [0.45f64, -0.45] {
+                let (sa, ca) = angle.sin_cos();
+                let bx = ux * ca - uy * sa;
+                let by = ux * sa + uy * ca;
+                draw_line(
+                    img,
+                    head,
+                    (head.0 + barb * bx, head.1 + barb * by),
+                    arrows.colour,
+                );
+            }
+        }
+    }
+}
+
+/// A 1-pixel line from `a` to `b` (pixel coordinates, clipped to the image).
+fn draw_line(img: &mut RgbImage, a: (f64, f64), b: (f64, f64), rgb: [u8; 3]) {
+    let n = (b.0 - a.0).abs().max((b.1 - a.1).abs()).ceil().max(1.0) as u32;
+    for i in 0..=n {
+        let t = f64::from(i) / f64::from(n);
+        let (x, y) = (a.0 + t * (b.0 - a.0), a.1 + t * (b.1 - a.1));
+        if x >= 0.0 && y >= 0.0 {
+            img.put(x as u32, y as u32, rgb);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::contact_sheet::View;
+
+    /// A flat square in the x-y plane moving uniformly by `d` (model units):
+    /// 1 unit = 10 mm; its single arrow (spacing = panel) starts at the panel centre and points along `d` as
+    /// seen from the front (+x right, +y up).
+    fn arrow_pixels(d: DVec3) -> Vec<(i64, i64)> {
+        let positions = [
+            DVec3::new(-1.0, -1.0, 0.0),
+            DVec3::new(1.0, -1.0, 0.0),
+            DVec3::new(1.0, 1.0, 0.0),
+            DVec3::new(-1.0, 1.0, 0.0),
+        ];
+        let triangles = [[0, 1, 2], [0, 2, 3]];
+        let mesh = PanelMesh {
+            positions: &positions,
+            triangles: &triangles,
+            displacement_mm: &[10.0 * d.length(); 4],
+            displacement: &[d; 4],
+        };
+        let cam = Camera::fit(&View::front(), &positions, 64, 64, 0.0);
+        let arrows = Arrows {
+            spacing_px: 64,
+            exaggeration: 1.0,
+            ..Arrows::default()
+        };
+        let img = render_panel(&mesh, &cam, 64, 64, 2, &Lighting::default(), Some(&arrows));
+        let mut out = Vec::new();
+        for y in 0..64 {
+            for x in 0..64 {
+                if img.get(x, y) == arrows.colour {
+                    out.push((i64::from(x) - 32, i64::from(y) - 32));
+                }
+            }
+        }
+        out
+    }
+
+    #[test]
+    fn arrows_point_the_way_the_skin_moves() {
+        // 0.25 units = 8 px at 32 px per unit.
+        let right = arrow_pixels(DVec3::new(0.25, 0.0, 0.0));
+        assert!(right.len() >= 8, "{right:?}");
+        assert!(
+            right.iter().all(|&(x, y)| x >= -1 && y.abs() <= 4),
+            "{right:?}"
+        );
+        assert!(right.iter().any(|&(x, _)| x >= 7), "{right:?}");
+        let up = arrow_pixels(DVec3::new(0.0, 0.25, 0.0));
+        assert!(up.iter().all(|&(x, y)| y <= 1 && x.abs() <= 4), "{up:?}");
+        assert!(up.iter().any(|&(_, y)| y <= -7), "{up:?}");
+        // Below the 0.5 mm threshold: no arrow.
+        assert!(arrow_pixels(DVec3::new(0.04, 0.0, 0.0)).is_empty());
+    }
 }
