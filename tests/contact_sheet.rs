@@ -344,3 +344,34 @@ fn cli_sheet_writes_the_png() {
         .unwrap();
     assert_eq!(bad.status.code(), Some(2));
 }
+
+/// The heat scale is in millimetres through the rig's unit: the default face is detected in
+/// centimetres (zygomaticus_major_l moves up to 9.0 mm: bin [8, 10) mm); drawn as if in
+/// millimetres (0.9 mm) the hottest pixel falls to the first bin.
+#[test]
+fn heat_scale_follows_the_rigs_unit() {
+    let m = model();
+    assert_eq!(contact_sheet::mm_per_unit(m), 10.0);
+    let cells = [contact_sheet::muscle_cells(m)
+        .into_iter()
+        .find(|c| c.label == "zygomaticus_major_l")
+        .unwrap()];
+    let hottest = |mm_per_unit: Option<f64>| {
+        let opts = SheetOptions {
+            mm_per_unit,
+            panel_px: 128,
+            ..SheetOptions::default()
+        };
+        let img = contact_sheet::render(m, &cells, &opts).unwrap();
+        let l = contact_sheet::layout(1, &opts);
+        // Panels only (the header holds the colour bar).
+        let (front, side) = (l.panel(0, 0), l.panel(0, 1));
+        (0..img.height)
+            .flat_map(|y| (0..img.width).map(move |x| (x, y)))
+            .filter(|&(x, y)| front.contains(x, y) || side.contains(x, y))
+            .filter_map(|(x, y)| heat::classify(img.get(x, y)))
+            .max()
+    };
+    assert_eq!(hottest(None), Some(6));
+    assert_eq!(hottest(Some(1.0)), Some(0));
+}

@@ -413,13 +413,15 @@ fn sheet(args: &SheetArgs) -> Result<()> {
         || args.rig.display().to_string(),
         |n| n.to_string_lossy().into_owned(),
     );
-    let opts = SheetOptions::default();
-    let mm = opts
-        .mm_per_unit
-        .unwrap_or_else(|| contact_sheet::mm_per_unit(&model));
+    let unit = &model.rig.unit;
+    let detected = if model.rig.unit_detected {
+        ", detected"
+    } else {
+        ""
+    };
     let opts = SheetOptions {
-        title: format!("{name}  ({mm} mm per unit)"),
-        ..opts
+        title: format!("{name}  (unit: {unit}{detected})"),
+        ..SheetOptions::default()
     };
     let start = std::time::Instant::now();
     let image = contact_sheet::render(&model, &cells, &opts)?;

@@ -67,8 +67,10 @@ pub fn colour(displacement_mm: f64) -> [u8; 3] {
 pub const GREY_CHROMA: u8 = 24;
 
 /// The bin whose colour a rendered (shaded, possibly anti-aliased) pixel shows, `None` for grey
-/// pixels (skin, background, text). Shading scales all channels alike, so the pixel is compared
-/// with each bin colour after normalising both to a maximum channel of 1.
+/// pixels (skin, background, text, arrows). A rendered pixel is `a · shade · colour + grey`
+/// (shading scales all channels alike; anti-aliasing mixes in grey skin or white background),
+/// so the pixel and each bin colour are compared after removing their smallest channel and
+/// scaling the rest to a largest value of 1, which cancels both.
 pub fn classify(rgb: [u8; 3]) -> Option<usize> {
     let max = rgb.iter().copied().max().unwrap_or(0);
     let min = rgb.iter().copied().min().unwrap_or(0);
@@ -76,8 +78,10 @@ pub fn classify(rgb: [u8; 3]) -> Option<usize> {
         return None;
     }
     let norm = |c: [u8; 3]| {
-        let m = f64::from(c.iter().copied().max().unwrap_or(1).max(1));
-        c.map(|v| f64::from(v) / m)
+        let lo = f64::from(c.iter().copied().min().unwrap_or(0));
+        let hi = f64::from(c.iter().copied().max().unwrap_or(0));
+        let span = (hi - lo).max(1.0);
+        c.map(|v| (f64::from(v) - lo) / span)
     };
     let p = norm(rgb);
     (0..COLOURS.len()).min_by(|&a, &b| {
@@ -109,6 +113,13 @@ mod tests {
             for shade in [0.35, 0.5, 0.75, 1.0] {
                 let s = c.map(|v| (f64::from(v) * shade).round() as u8);
                 assert_eq!(classify(s), Some(i), "bin {i} at shade {shade}: {s:?}");
+                // Anti-aliased against white background or grey skin, half and half.
+                for grey in [255.0, 0.8 * f64::from(SKIN[0])] {
+                    let m = c.map(|v| (0.5 * f64::from(v) * shade + 0.5 * grey).round() as u8);
+                    if m.iter().max().unwrap() - m.iter().min().unwrap() >= GREY_CHROMA {
+                        assert_eq!(classify(m), Some(i), "bin {i} blended with {grey}: {m:?}");
+                    }
+                }
             }
         }
         assert_eq!(classify(SKIN), None);

@@ -141,30 +141,10 @@ pub enum SheetError {
     Write(#[from] WriteError),
 }
 
-/// Millimetres per model unit used for a model's heat map.
-///
-/// Until rigs carry their length unit this estimates it from the eyes: the distance between
-/// the eye-loop centres is taken as the adult mean interpupillary distance (63 mm) and snapped
-/// to the nearest of mm, cm, inch and m (factor 1, 10, 25.4, 1000; nearest in log scale).
+/// Millimetres per model unit used for a model's heat map: the rig's length unit
+/// ([`face_prep::FaceRig::unit`], given with `--units` or estimated from the eye distance).
 pub fn mm_per_unit(model: &FaceModel) -> f64 {
-    let shell = &model.rig.shell.vertices;
-    let centre = |lp: &[u32]| {
-        let pts: Vec<DVec3> = lp
-            .iter()
-            .filter_map(|&v| shell.get(v as usize).copied())
-            .collect();
-        pts.iter().copied().sum::<DVec3>() / pts.len().max(1) as f64
-    };
-    let eyes = centre(&model.rig.loops.eye_l).distance(centre(&model.rig.loops.eye_r));
-    let estimate = 63.0 / eyes;
-    [1.0, 10.0, 25.4, 1000.0]
-        .into_iter()
-        .min_by(|a: &f64, b: &f64| {
-            (a.ln() - estimate.ln())
-                .abs()
-                .total_cmp(&(b.ln() - estimate.ln()).abs())
-        })
-        .unwrap_or(1.0)
+    model.rig.unit.mm()
 }
 
 /// Neutral: every slider 0.
