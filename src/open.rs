@@ -95,6 +95,10 @@ fn read_bytes(path: &Path, limits: &InputLimits) -> Result<Vec<u8>, OpenError> {
             path: path.to_path_buf(),
             source,
         },
+        face_prep::PrepError::NotAFile { .. } => OpenError::Read {
+            path: path.to_path_buf(),
+            source: std::io::Error::other("not a regular file"),
+        },
         other => OpenError::Face {
             path: path.to_path_buf(),
             source: Box::new(other),
