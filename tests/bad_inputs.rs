@@ -98,3 +98,34 @@ fn every_corpus_file_fails_as_expected_and_writes_nothing() {
         .collect();
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
+
+#[test]
+fn input_limits_are_overridable_from_the_command_line() {
+    let face = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/mediapipe_canonical_4loop.obj");
+    let run = |args: &[&str]| {
+        let out = Command::new(env!("CARGO_BIN_EXE_facebem"))
+            .arg("info")
+            .arg(&face)
+            .args(args)
+            .output()
+            .unwrap();
+        (
+            out.status.code(),
+            String::from_utf8_lossy(&out.stderr).into_owned(),
+        )
+    };
+    let (code, err) = run(&["--max-input-triangles", "100"]);
+    assert_eq!(code, Some(1), "{err}");
+    assert!(
+        err.contains("input too large: 468 positions, the limit is 100"),
+        "{err}"
+    );
+    let (code, err) = run(&["--max-input-mb", "0"]);
+    assert_eq!(code, Some(1), "{err}");
+    assert!(
+        err.contains("input too large: 25774 file bytes, the limit is 0"),
+        "{err}"
+    );
+    let (code, err) = run(&["--max-input-triangles", "852"]);
+    assert_eq!(code, Some(0), "{err}");
+}

@@ -19,7 +19,7 @@ use anyhow::{Context, Result, anyhow, bail};
 use clap::{Args, Parser, Subcommand};
 use face_prep::RigParams;
 use facebem::large_face::LargeFaceParams;
-use facebem::open::{Opened, open};
+use facebem::open::Opened;
 use facebem::{Control, FaceModel, PipelineParams, build_face_model, cache, presets};
 use indicatif::{ProgressBar, ProgressStyle};
 
@@ -32,6 +32,21 @@ use indicatif::{ProgressBar, ProgressStyle};
 struct Cli {
     #[command(subcommand)]
     command: Command,
+    /// Largest input file read, in MiB (face meshes and muscle files; rigs up to 1024).
+    #[arg(long, global = true, default_value_t = face_prep::InputLimits::default().max_file_bytes >> 20)]
+    max_input_mb: u64,
+    /// Most positions and triangles a face mesh may have.
+    #[arg(long, global = true, default_value_t = face_prep::InputLimits::default().max_triangles)]
+    max_input_triangles: usize,
+}
+
+/// Input size limits from the command line (set once in `main`).
+static LIMITS: std::sync::OnceLock<face_prep::InputLimits> = std::sync::OnceLock::new();
+
+/// Opens a face mesh or rig under the command line's input limits.
+fn open(path: &Path) -> Result<Opened, facebem::open::OpenError> {
+    let limits = LIMITS.get().copied().unwrap_or_default();
+    facebem::open::open_with_limits(path, &limits)
 }
 
 #[derive(Subcommand)]
@@ -173,6 +188,12 @@ fn one_line(e: &anyhow::Error) -> String {
 }
 
 fn run(cli: Cli) -> Result<()> {
+    let _ = LIMITS.set(face_prep::InputLimits {
+        max_file_bytes: cli.max_input_mb.saturating_mul(1 << 20),
+        max_positions: cli.max_input_triangles,
+        max_triangles: cli.max_input_triangles,
+        ..face_prep::InputLimits::default()
+    });
     match cli.command {
         Command::Rig {
             face,
