@@ -313,9 +313,22 @@ fn obj_export_keeps_the_input_layout(face: usize) {
     }
 }
 
+/// `v` lines of an OBJ text, in file order.
+fn obj_v_lines(text: &str) -> Vec<DVec3> {
+    text.lines()
+        .filter_map(|l| l.strip_prefix("v "))
+        .map(|l| {
+            let c: Vec<f64> = l.split_whitespace().map(|t| t.parse().unwrap()).collect();
+            DVec3::new(c[0], c[1], c[2])
+        })
+        .collect()
+}
+
 fn gltf_exports_validate_and_match(face: usize) {
     let m = model(face);
     let dir = tempfile::tempdir().unwrap();
+    let metres = m.metres_per_unit();
+    let v_lines = obj_v_lines(m.obj_source.as_deref().unwrap());
     for name in ["face.glb", "face.gltf"] {
         let path = dir.path().join(name);
         m.write_gltf(&path, &GltfParams::default()).unwrap();
@@ -324,11 +337,22 @@ fn gltf_exports_validate_and_match(face: usize) {
         let mesh = doc.meshes().next().unwrap();
         let prim = mesh.primitives().next().unwrap();
         let reader = prim.reader(|b| Some(&buffers[b.index()]));
+        // The user's vertex order: glTF vertex i is `v` line i, in metres (these files have no
+        // `vt`/`vn`, so no seam copies).
         let positions: Vec<[f32; 3]> = reader.read_positions().unwrap().collect();
-        assert_eq!(positions.len(), m.basis.neutral.len());
-        for (p, q) in positions.iter().zip(&m.basis.neutral) {
-            assert_eq!(*p, q.as_vec3().to_array());
+        assert_eq!(positions.len(), v_lines.len());
+        for (i, (p, v)) in positions.iter().zip(&v_lines).enumerate() {
+            assert_eq!(*p, (*v * metres).as_vec3().to_array(), "vertex {i}");
         }
+        // A face is 12 to 30 cm tall.
+        let (lo, hi) = positions.iter().fold((f32::MAX, f32::MIN), |(lo, hi), p| {
+            (lo.min(p[1]), hi.max(p[1]))
+        });
+        let height_m = hi - lo;
+        assert!(
+            (0.12..=0.30).contains(&height_m),
+            "bounding box height {height_m} m"
+        );
         let targets: Vec<Vec<[f32; 3]>> = reader
             .read_morph_targets()
             .map(|(p, _, _)| p.unwrap().collect())
@@ -338,11 +362,29 @@ fn gltf_exports_validate_and_match(face: usize) {
             2 * m.basis.muscle_count() + facebem::presets::ALL.len() - 1
         );
         for k in 0..m.basis.muscle_count() {
-            for (v, d) in m.basis.displacements[k].iter().enumerate() {
-                assert_eq!(targets[2 * k][v], (-*d).as_vec3().to_array());
-                assert_eq!(targets[2 * k + 1][v], d.as_vec3().to_array());
+            let d = &m.basis.displacements[k];
+            for (i, w) in m.mesh.input_to_vertex.iter().enumerate() {
+                let d = w.map_or(DVec3::ZERO, |w| d[w as usize] * metres);
+                assert_eq!(targets[2 * k][i], (-d).as_vec3().to_array());
+                assert_eq!(targets[2 * k + 1][i], d.as_vec3().to_array());
             }
         }
+        // The replaceable skin material, and the source's licence.
+        let material = prim.material();
+        assert_eq!(material.name(), Some(facebem::export::MATERIAL_NAME));
+        assert_eq!(material.pbr_metallic_roughness().metallic_factor(), 0.0);
+        let copyright = doc.as_json().asset.copyright.clone();
+        let known = facebem::export::attribution::identify(&m.mesh).expect("a bundled face");
+        assert_eq!(known.file, support::FACES[face]);
+        assert_eq!(copyright.as_deref(), Some(known.copyright));
+        if support::FACES[face].starts_with("leeperrysmith") {
+            let c = copyright.unwrap();
+            assert!(
+                c.contains("Lee Perry-Smith") && c.contains("Attribution 3.0"),
+                "{c}"
+            );
+        }
+        assert_eq!(doc.animations().count(), 0, "animation is off by default");
     }
 }
 

@@ -92,7 +92,52 @@ fn check_file(path: &std::path::Path, basis: &MuscleBasis) {
             "vertex {v}: {got} vs {expect}"
         );
     }
-    assert_eq!(doc.animations().count(), 1);
+    // Animation is off by default; the skin material has metalness 0.
+    assert_eq!(doc.animations().count(), 0);
+    let material = prim.material();
+    assert_eq!(material.name(), Some(facebem::export::MATERIAL_NAME));
+    assert_eq!(material.pbr_metallic_roughness().metallic_factor(), 0.0);
+}
+
+#[test]
+fn animation_gives_one_clip_per_expression_named_after_it() {
+    let basis = grid_basis();
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("animated.glb");
+    let params = GltfParams {
+        animation: true,
+        ..GltfParams::default()
+    };
+    write_gltf(&path, &basis, &params).unwrap();
+    support::assert_valid(&path);
+    let (doc, buffers, _) = gltf::import(&path).unwrap();
+    let expressions: Vec<&str> = facebem::presets::ALL
+        .iter()
+        .map(|p| p.name)
+        .filter(|n| *n != "neutral")
+        .collect();
+    let clips: Vec<String> = doc
+        .animations()
+        .map(|a| a.name().unwrap_or_default().to_string())
+        .collect();
+    assert_eq!(clips, expressions);
+    let targets = 2 * 2 + expressions.len();
+    for (k, anim) in doc.animations().enumerate() {
+        let channel = anim.channels().next().unwrap();
+        let reader = channel.reader(|b| Some(&buffers[b.index()]));
+        let times: Vec<f32> = reader.read_inputs().unwrap().collect();
+        assert_eq!(times, [0.0, 1.0, 2.0]);
+        let weights: Vec<f32> = match reader.read_outputs().unwrap() {
+            gltf::animation::util::ReadOutputs::MorphTargetWeights(w) => w.into_f32().collect(),
+            _ => panic!("weights expected"),
+        };
+        // Neutral, then only this expression's target at 1, then neutral.
+        assert_eq!(weights.len(), 3 * targets);
+        for (i, w) in weights.iter().enumerate() {
+            let want = if i == targets + 4 + k { 1.0 } else { 0.0 };
+            assert_eq!(*w, want, "clip {k} weight {i}");
+        }
+    }
 }
 
 #[test]

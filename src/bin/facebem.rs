@@ -70,6 +70,7 @@ enum Command {
         file: PathBuf,
     },
     /// Write an OBJ of a pose (a preset, then individual sliders on top).
+    #[command(after_help = presets_help())]
     Pose {
         /// Rig file (or a face mesh, which is then computed first).
         rig: PathBuf,
@@ -84,16 +85,18 @@ enum Command {
         #[arg(short, long)]
         output: PathBuf,
     },
-    /// Export glTF 2.0 with one morph target per muscle action and preset.
+    /// Export glTF 2.0 (metres, the input's vertex order and texture coordinates) with one
+    /// morph target per muscle action and preset.
+    #[command(after_help = presets_help())]
     Export {
         /// Rig file (or a face mesh, which is then computed first).
         rig: PathBuf,
         /// Output .glb or .gltf.
         #[arg(long)]
         gltf: PathBuf,
-        /// Leave out the animation that plays the presets.
+        /// Add one animation clip per preset, named after it (neutral → preset → neutral).
         #[arg(long)]
-        no_animation: bool,
+        animation: bool,
     },
     /// Write the automatically placed muscles of a face as a muscle file (thesis format).
     Muscles {
@@ -211,11 +214,23 @@ fn run(cli: Cli) -> Result<()> {
         Command::Export {
             rig,
             gltf,
-            no_animation,
-        } => export(&rig, &gltf, no_animation),
+            animation,
+        } => export(&rig, &gltf, animation),
         Command::Muscles { face, output } => muscles(&face, &output),
         Command::Sheet(args) => sheet(&args),
     }
+}
+
+/// The presets with their FACS action units, for `--help`.
+fn presets_help() -> String {
+    let mut out = String::from("Presets (FACS action units; negative sliders contract):\n");
+    for p in &presets::ALL {
+        out.push_str(&format!(
+            "  {:<10} {:<24} {}\n",
+            p.name, p.action_units, p.description
+        ));
+    }
+    out
 }
 
 fn progress_control() -> (Control, ProgressBar) {
@@ -387,11 +402,11 @@ fn pose(rig: &Path, sets: &[String], preset: Option<&str>, output: &Path) -> Res
     Ok(())
 }
 
-fn export(rig: &Path, gltf: &Path, no_animation: bool) -> Result<()> {
+fn export(rig: &Path, gltf: &Path, animation: bool) -> Result<()> {
     facebem::check_output(gltf, &[rig], &["glb", "gltf"], "a glTF export")?;
     let model = model_from(rig)?;
     let params = facebem::export::GltfParams {
-        animation: !no_animation,
+        animation,
         ..Default::default()
     };
     model.write_gltf(gltf, &params)?;

@@ -1,12 +1,18 @@
 //! Exports: OBJ of any pose ([`obj`]) and glTF 2.0 with one morph target per muscle action and
-//! preset ([`gltf`]). Files are written atomically.
+//! preset ([`gltf`]), in the user's own vertex layout ([`layout`]) and with the source's
+//! licence ([`attribution`]). Files are written atomically.
 
+pub mod attribution;
 pub mod gltf;
+pub mod layout;
 pub mod obj;
 
 use std::path::Path;
 
-pub use gltf::{GltfExportError, GltfFormat, GltfParams, export_gltf};
+pub use gltf::{
+    GltfExportError, GltfFormat, GltfParams, MATERIAL_NAME, export_gltf, export_gltf_layout,
+};
+pub use layout::{ExportLayout, LayoutError};
 pub use obj::ObjExportError;
 
 use crate::MuscleBasis;
@@ -21,6 +27,9 @@ pub enum ExportError {
     /// Building the OBJ failed.
     #[error(transparent)]
     Obj(#[from] ObjExportError),
+    /// The user's OBJ could not be laid out as glTF vertices.
+    #[error(transparent)]
+    Layout(#[from] LayoutError),
     /// The pose's sliders were invalid.
     #[error(transparent)]
     Pose(#[from] crate::PoseError),
@@ -62,8 +71,64 @@ impl crate::FaceModel {
         Ok(())
     }
 
-    /// Writes the glTF morph-target export to `path` (atomically; `.gltf` or `.glb`).
+    /// The glTF vertices of this face: the user's OBJ layout when the face came from an OBJ
+    /// file ([`ExportLayout::from_obj`]), otherwise the welded vertices.
+    pub fn export_layout(&self) -> Result<ExportLayout, ExportError> {
+        Ok(match &self.obj_source {
+            Some(text) => ExportLayout::from_obj(text, &self.mesh.input_to_vertex)?,
+            None => ExportLayout::welded(&self.basis.neutral, &self.basis.triangles),
+        })
+    }
+
+    /// `params` completed with what the model knows: metres per input unit (the rig's length
+    /// unit), the bundled source's attribution and licence, the OBJ's header comments.
+    pub fn gltf_params(&self, params: &GltfParams) -> GltfParams {
+        let mut params = params.clone();
+        params.metres_per_unit = self.metres_per_unit();
+        if let Some(known) = attribution::identify(&self.mesh) {
+            params.copyright = Some(known.copyright.to_string());
+            params
+                .asset_extras
+                .insert("licence".into(), known.licence.into());
+            params
+                .asset_extras
+                .insert("source".into(), known.file.into());
+        }
+        if let Some(text) = &self.obj_source {
+            let header = attribution::obj_header(text);
+            if !header.is_empty() {
+                params
+                    .asset_extras
+                    .insert("sourceHeader".into(), header.into());
+            }
+        }
+        params
+    }
+
+    /// Metres per unit of the input positions.
+    pub fn metres_per_unit(&self) -> f64 {
+        1.0
+    }
+
+    /// glTF bytes of this face (see [`FaceModel::write_gltf`]).
+    pub fn gltf_bytes(&self, params: &GltfParams) -> Result<Vec<u8>, ExportError> {
+        let layout = self.export_layout()?;
+        Ok(export_gltf_layout(
+            &self.basis,
+            &layout,
+            &self.gltf_params(params),
+        )?)
+    }
+
+    /// Writes the glTF morph-target export to `path` (atomically; `.gltf` or `.glb`, whatever
+    /// `params.format` says): the user's vertex layout, positions in metres, the source's
+    /// attribution ([`FaceModel::gltf_params`]).
     pub fn write_gltf(&self, path: &Path, params: &GltfParams) -> Result<(), ExportError> {
-        write_gltf(path, &self.basis, params)
+        let params = GltfParams {
+            format: GltfFormat::from_path(path),
+            ..params.clone()
+        };
+        write_atomic(path, &self.gltf_bytes(&params)?)?;
+        Ok(())
     }
 }

@@ -19,11 +19,11 @@ pub fn asset(name: &str) -> PathBuf {
         .join(name)
 }
 
-/// Outcome of running the Khronos glTF-Validator.
+/// Outcome of running a node tool (the Khronos glTF-Validator, three.js).
 pub enum Validation {
     /// node is not installed: the caller skips with a message (CI has node).
     NodeMissing,
-    /// The validator's JSON report.
+    /// The tool's JSON report.
     Report(serde_json::Value),
 }
 
@@ -36,6 +36,18 @@ static VALIDATOR_INSTALL: std::sync::Mutex<()> = std::sync::Mutex::new(());
 /// holding `node_modules/gltf-validator`). With `FACEBEM_REQUIRE_GLTF_VALIDATOR=1` (CI) a
 /// missing node is a failure instead of a skip.
 pub fn validate_gltf(file: &Path) -> Validation {
+    run_node_script("validate_gltf.cjs", file)
+}
+
+/// Loads `file` with three.js's GLTFLoader in node (npm `three`, pinned by the same
+/// `tests/gltf-validator/package-lock.json`) and returns what a three.js app gets (see
+/// `tests/support/three_load.mjs`).
+pub fn load_with_threejs(file: &Path) -> Validation {
+    run_node_script("three_load.mjs", file)
+}
+
+/// Runs `tests/support/<script> <npm dir> <file>` with node and parses its JSON output.
+fn run_node_script(script: &str, file: &Path) -> Validation {
     if Command::new("node").arg("--version").output().is_err() {
         assert!(
             std::env::var_os("FACEBEM_REQUIRE_GLTF_VALIDATOR").is_none(),
@@ -51,10 +63,13 @@ pub fn validate_gltf(file: &Path) -> Validation {
         let _guard = VALIDATOR_INSTALL
             .lock()
             .unwrap_or_else(|poisoned| poisoned.into_inner());
-        if !dir
-            .join("node_modules/gltf-validator/package.json")
-            .exists()
-        {
+        let installed = ["gltf-validator", "three"].iter().all(|p| {
+            dir.join("node_modules")
+                .join(p)
+                .join("package.json")
+                .exists()
+        });
+        if !installed {
             let status = Command::new("npm")
                 .args(["ci", "--no-audit", "--no-fund"])
                 .current_dir(&dir)
@@ -63,22 +78,26 @@ pub fn validate_gltf(file: &Path) -> Validation {
             assert!(status.success(), "npm ci in {} failed", dir.display());
         }
     }
-    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/support/validate_gltf.cjs");
+    let script = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/support")
+        .join(script);
     let out = Command::new("node")
-        .arg(script)
+        .arg(&script)
         .arg(&dir)
         .arg(file)
         .output()
         .expect("cannot run node");
     assert!(
         out.status.success(),
-        "validator failed: {}",
+        "{} failed: {}",
+        script.display(),
         String::from_utf8_lossy(&out.stderr)
     );
-    Validation::Report(serde_json::from_slice(&out.stdout).expect("validator output is JSON"))
+    Validation::Report(serde_json::from_slice(&out.stdout).expect("node script output is JSON"))
 }
 
-/// Asserts that a validator report has no errors, printing its messages otherwise.
+/// Asserts that a validator report has no errors and no warnings, printing its messages
+/// otherwise (infos and hints are allowed).
 pub fn assert_valid(file: &Path) {
     match validate_gltf(file) {
         Validation::NodeMissing => {
@@ -93,6 +112,13 @@ pub fn assert_valid(file: &Path) {
                 errors,
                 Some(0),
                 "{}: glTF-Validator errors: {}",
+                file.display(),
+                report["issues"]["messages"]
+            );
+            assert_eq!(
+                report["issues"]["numWarnings"].as_u64(),
+                Some(0),
+                "{}: glTF-Validator warnings: {}",
                 file.display(),
                 report["issues"]["messages"]
             );

@@ -1,0 +1,441 @@
+//! glTF 2.0 export (`.glb` binary or `.gltf` with an embedded buffer) with morph targets.
+//!
+//! The file holds the user's neutral face — in the user's own vertex order with the input's
+//! texture coordinates and normals where it had them ([`ExportLayout`]), positions in metres
+//! (glTF's unit: input positions × [`GltfParams::metres_per_unit`]) — and, as morph targets:
+//! `<muscle id>_contract` (slider −1) and `<muscle id>_relax` (slider +1) for every muscle, then
+//! `preset_<name>` for every expression preset except `neutral` (the base mesh is neutral).
+//! Target names are listed in `mesh.extras.targetNames`. Every morph weight in [0, 1]
+//! reproduces the facebem pose exactly for the positions (linear basis): weight `w` on
+//! `<id>_contract` equals slider `−w`. NORMAL deltas are the change of the area-weighted vertex
+//! normal at full weight (normals are not linear; this is the usual approximation). All
+//! default weights are 0.
+//!
+//! The primitive uses one material, [`MATERIAL_NAME`] (skin-coloured PBR, metalness 0,
+//! double-sided: the face is an open surface), for the user to replace. `asset.copyright`
+//! carries the source's attribution when it is known ([`super::attribution`]), `asset.extras`
+//! its licence, the input's OBJ header and the unit conversion. With
+//! [`GltfParams::animation`], each expression gets its own animation clip named after it
+//! (`happy`, `sad`, …): neutral → expression → neutral.
+
+mod buffer;
+
+use glam::DVec3;
+use serde_json::{Map, Value, json};
+
+use super::layout::ExportLayout;
+use crate::MuscleBasis;
+use crate::presets::Preset;
+use buffer::{Builder, base64, glb};
+
+/// Name of the material of the exported face: replace it to texture the face.
+pub const MATERIAL_NAME: &str = "facebem_skin";
+
+/// Container format of a glTF export.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum GltfFormat {
+    /// Binary `.glb`: JSON chunk + BIN chunk.
+    Binary,
+    /// Text `.gltf` with the buffer embedded as a base64 data URI.
+    Embedded,
+}
+
+impl GltfFormat {
+    /// Picks the format from a file name: `.gltf` → [`GltfFormat::Embedded`], anything else
+    /// (normally `.glb`) → [`GltfFormat::Binary`].
+    pub fn from_path(path: &std::path::Path) -> GltfFormat {
+        match path.extension().and_then(|e| e.to_str()) {
+            Some(e) if e.eq_ignore_ascii_case("gltf") => GltfFormat::Embedded,
+            _ => GltfFormat::Binary,
+        }
+    }
+}
+
+/// Options of a glTF export.
+#[derive(Clone, Debug, PartialEq)]
+pub struct GltfParams {
+    /// Container format.
+    pub format: GltfFormat,
+    /// Add one animation clip per preset, named after it (off by default: importers such as
+    /// Blender's bind a clip to every shape key, which then cannot be set by hand).
+    pub animation: bool,
+    /// Seconds from neutral to the full expression (and back) in each clip.
+    pub seconds_per_keyframe: f32,
+    /// Presets to add as morph targets (and as clips); `neutral` is skipped.
+    pub presets: Vec<Preset>,
+    /// Metres per unit of the input positions (glTF's unit is the metre): 0.01 for a face in
+    /// centimetres. [`crate::FaceModel::write_gltf`] sets it from the rig's length unit.
+    pub metres_per_unit: f64,
+    /// `asset.copyright`: the source's attribution, if known.
+    pub copyright: Option<String>,
+    /// Extra `asset.extras` entries (licence, source header); the unit conversion is added.
+    pub asset_extras: Map<String, Value>,
+}
+
+impl Default for GltfParams {
+    fn default() -> Self {
+        GltfParams {
+            format: GltfFormat::Binary,
+            animation: false,
+            seconds_per_keyframe: 1.0,
+            presets: crate::presets::ALL.to_vec(),
+            metres_per_unit: 1.0,
+            copyright: None,
+            asset_extras: Map::new(),
+        }
+    }
+}
+
+/// Errors from glTF export.
+#[derive(Debug, thiserror::Error)]
+pub enum GltfExportError {
+    /// The basis has no vertices or no triangles.
+    #[error("cannot export an empty mesh ({vertices} vertices, {triangles} triangles)")]
+    EmptyMesh {
+        /// Vertex count.
+        vertices: usize,
+        /// Triangle count.
+        triangles: usize,
+    },
+    /// A triangle refers to a vertex that does not exist.
+    #[error("triangle {triangle} refers to vertex {vertex}, but there are only {count} vertices")]
+    IndexOutOfRange {
+        /// Triangle index.
+        triangle: usize,
+        /// Offending vertex index.
+        vertex: u32,
+        /// Vertex count.
+        count: usize,
+    },
+    /// A muscle's displacement field does not have one vector per vertex.
+    #[error("muscle {muscle} has {got} displacement vectors for {expected} vertices")]
+    FieldLength {
+        /// Muscle id.
+        muscle: String,
+        /// Vertex count.
+        expected: usize,
+        /// Vectors found.
+        got: usize,
+    },
+    /// A position or displacement is not finite once converted to f32.
+    #[error("vertex {vertex} of {what} is not finite in f32")]
+    NonFinite {
+        /// Which field (`neutral`, a target name).
+        what: String,
+        /// Vertex index.
+        vertex: usize,
+    },
+    /// The seconds per keyframe are not a positive finite number.
+    #[error("seconds per keyframe must be positive and finite, got {0}")]
+    BadKeyframeTime(f32),
+    /// The metres per input unit are not a positive finite number.
+    #[error("metres per unit must be positive and finite, got {0}")]
+    BadUnit(f64),
+    /// The export layout does not fit the basis.
+    #[error("the export layout does not fit the mesh: {0}")]
+    Layout(String),
+}
+
+/// Builds the glTF file (bytes of a `.glb`, or UTF-8 JSON of a `.gltf`) for `basis`, with its
+/// welded vertices in order ([`ExportLayout::welded`]).
+///
+/// ```
+/// use facebem::MuscleBasis;
+/// use facebem::export::gltf::{export_gltf, GltfParams};
+/// use glam::DVec3;
+/// let basis = MuscleBasis {
+///     muscle_ids: vec!["zygomaticus_major_l".into()],
+///     neutral: vec![DVec3::ZERO, DVec3::X, DVec3::Y],
+///     triangles: vec![[0, 1, 2]],
+///     displacements: vec![vec![DVec3::ZERO, DVec3::Z * 0.1, DVec3::ZERO]],
+/// };
+/// let glb = export_gltf(&basis, &GltfParams::default()).unwrap();
+/// assert_eq!(&glb[0..4], b"glTF");
+/// ```
+pub fn export_gltf(basis: &MuscleBasis, params: &GltfParams) -> Result<Vec<u8>, GltfExportError> {
+    let layout = ExportLayout::welded(&basis.neutral, &basis.triangles);
+    export_gltf_layout(basis, &layout, params)
+}
+
+/// Like [`export_gltf`], with the glTF vertices of `layout` (the user's own order, texture
+/// coordinates and normals).
+pub fn export_gltf_layout(
+    basis: &MuscleBasis,
+    layout: &ExportLayout,
+    params: &GltfParams,
+) -> Result<Vec<u8>, GltfExportError> {
+    check(basis, layout, params)?;
+    let n = basis.neutral.len();
+    let scale = params.metres_per_unit;
+    // Per glTF vertex: gather a welded per-vertex field (zero for unused input positions).
+    let gather = |field: &[DVec3], factor: f64| -> Vec<DVec3> {
+        layout
+            .welded
+            .iter()
+            .map(|w| w.map_or(DVec3::ZERO, |w| field[w as usize] * factor))
+            .collect()
+    };
+
+    let mut b = Builder::default();
+    let neutral_normals = vertex_normals(&basis.neutral, &basis.triangles);
+    let positions: Vec<DVec3> = layout
+        .welded
+        .iter()
+        .zip(&layout.positions)
+        .map(|(w, p)| w.map_or(*p, |w| basis.neutral[w as usize]) * scale)
+        .collect();
+    let normals: Vec<DVec3> = (0..layout.len())
+        .map(|j| {
+            let given = layout.normals.as_ref().and_then(|n| n[j]);
+            let computed = layout.welded[j].map(|w| neutral_normals[w as usize]);
+            given.or(computed).unwrap_or(DVec3::Z)
+        })
+        .collect();
+    let position = b.vec3_accessor("neutral", &positions, true)?;
+    let normal = b.vec3_accessor("neutral normals", &normals, false)?;
+    let mut attributes = json!({ "POSITION": position, "NORMAL": normal });
+    if let Some(uvs) = &layout.uvs {
+        attributes["TEXCOORD_0"] = json!(b.vec2_accessor(uvs));
+    }
+    let indices = b.indices_accessor(&layout.triangles);
+
+    // Morph targets: (name, welded position deltas at weight 1).
+    let mut targets: Vec<(String, Vec<DVec3>)> = Vec::new();
+    for (id, field) in basis.muscle_ids.iter().zip(&basis.displacements) {
+        targets.push((
+            format!("{id}_contract"),
+            field.iter().map(|d| -*d).collect(),
+        ));
+        targets.push((format!("{id}_relax"), field.clone()));
+    }
+    let mut preset_targets = Vec::new();
+    for preset in params.presets.iter().filter(|p| p.name != "neutral") {
+        let sliders = preset.sliders_for(&basis.muscle_ids);
+        let mut delta = vec![DVec3::ZERO; n];
+        for (field, &s) in basis.displacements.iter().zip(&sliders) {
+            for (d, f) in delta.iter_mut().zip(field) {
+                *d += s * *f;
+            }
+        }
+        preset_targets.push((preset.name, targets.len()));
+        targets.push((format!("preset_{}", preset.name), delta));
+    }
+
+    let mut target_json = Vec::with_capacity(targets.len());
+    for (name, delta) in &targets {
+        let posed: Vec<DVec3> = basis
+            .neutral
+            .iter()
+            .zip(delta)
+            .map(|(p, d)| *p + *d)
+            .collect();
+        let normal_delta: Vec<DVec3> = vertex_normals(&posed, &basis.triangles)
+            .iter()
+            .zip(&neutral_normals)
+            .map(|(a, b)| *a - *b)
+            .collect();
+        let p = b.vec3_accessor(name, &gather(delta, scale), true)?;
+        let nd = b.vec3_accessor(name, &gather(&normal_delta, 1.0), false)?;
+        target_json.push(json!({ "POSITION": p, "NORMAL": nd }));
+    }
+    let names: Vec<&str> = targets.iter().map(|(n, _)| n.as_str()).collect();
+
+    let mut extras = json!({ "targetNames": names });
+    if layout.len() > layout.input_count {
+        extras["seamCopyOf"] = json!(&layout.input_index[layout.input_count..]);
+    }
+    let mut asset_extras = params.asset_extras.clone();
+    asset_extras.insert("metresPerInputUnit".into(), json!(params.metres_per_unit));
+    let mut asset = json!({
+        "version": "2.0",
+        "generator": concat!("facebem ", env!("CARGO_PKG_VERSION")),
+        "extras": asset_extras,
+    });
+    if let Some(c) = &params.copyright {
+        asset["copyright"] = json!(c);
+    }
+    let mut root = json!({
+        "asset": asset,
+        "scene": 0,
+        "scenes": [{ "name": "face", "nodes": [0] }],
+        "nodes": [{ "name": "face", "mesh": 0 }],
+        "materials": [{
+            "name": MATERIAL_NAME,
+            "pbrMetallicRoughness": {
+                "baseColorFactor": SKIN_LINEAR_RGBA,
+                "metallicFactor": 0.0,
+                "roughnessFactor": 0.6,
+            },
+            "doubleSided": true,
+        }],
+        "meshes": [{
+            "name": "face",
+            "primitives": [{
+                "attributes": attributes,
+                "indices": indices,
+                "material": 0,
+                "mode": 4,
+                "targets": target_json,
+            }],
+            "weights": vec![0.0; targets.len()],
+            "extras": extras,
+        }],
+    });
+
+    if params.animation && !preset_targets.is_empty() {
+        // One clip per preset: neutral, the preset at full weight, neutral.
+        let s = params.seconds_per_keyframe;
+        let input = b.scalar_accessor(&[0.0, s, 2.0 * s], true);
+        let mut clips = Vec::new();
+        for &(name, t) in &preset_targets {
+            let mut weights = vec![0.0f32; 3 * targets.len()];
+            weights[targets.len() + t] = 1.0;
+            let output = b.scalar_accessor(&weights, false);
+            clips.push(json!({
+                "name": name,
+                "samplers": [{ "input": input, "output": output, "interpolation": "LINEAR" }],
+                "channels": [{ "sampler": 0, "target": { "node": 0, "path": "weights" } }],
+            }));
+        }
+        root["animations"] = Value::Array(clips);
+    }
+
+    let Builder {
+        mut bin,
+        views,
+        accessors,
+    } = b;
+    while !bin.len().is_multiple_of(4) {
+        bin.push(0);
+    }
+    root["bufferViews"] = Value::Array(views);
+    root["accessors"] = Value::Array(accessors);
+    match params.format {
+        GltfFormat::Binary => {
+            root["buffers"] = json!([{ "byteLength": bin.len() }]);
+            Ok(glb(&root, &bin))
+        }
+        GltfFormat::Embedded => {
+            root["buffers"] = json!([{
+                "byteLength": bin.len(),
+                "uri": format!("data:application/octet-stream;base64,{}", base64(&bin)),
+            }]);
+            Ok(serde_json::to_vec_pretty(&root).unwrap_or_default())
+        }
+    }
+}
+
+/// Base colour of [`MATERIAL_NAME`]: a light skin tone, sRGB (224, 172, 150) in linear RGB.
+const SKIN_LINEAR_RGBA: [f32; 4] = [0.745, 0.412, 0.305, 1.0];
+
+/// Checks the basis, the layout and the parameters before anything is built.
+fn check(
+    basis: &MuscleBasis,
+    layout: &ExportLayout,
+    params: &GltfParams,
+) -> Result<(), GltfExportError> {
+    let n = basis.neutral.len();
+    if n == 0 || basis.triangles.is_empty() {
+        return Err(GltfExportError::EmptyMesh {
+            vertices: n,
+            triangles: basis.triangles.len(),
+        });
+    }
+    if !(params.seconds_per_keyframe.is_finite() && params.seconds_per_keyframe > 0.0) {
+        return Err(GltfExportError::BadKeyframeTime(
+            params.seconds_per_keyframe,
+        ));
+    }
+    if !(params.metres_per_unit.is_finite() && params.metres_per_unit > 0.0) {
+        return Err(GltfExportError::BadUnit(params.metres_per_unit));
+    }
+    for (t, tri) in basis.triangles.iter().enumerate() {
+        if let Some(&v) = tri.iter().find(|&&v| v as usize >= n) {
+            return Err(GltfExportError::IndexOutOfRange {
+                triangle: t,
+                vertex: v,
+                count: n,
+            });
+        }
+    }
+    for (id, field) in basis.muscle_ids.iter().zip(&basis.displacements) {
+        if field.len() != n {
+            return Err(GltfExportError::FieldLength {
+                muscle: id.clone(),
+                expected: n,
+                got: field.len(),
+            });
+        }
+    }
+    let m = layout.len();
+    let lengths_fit = layout.positions.len() == m
+        && layout.input_index.len() == m
+        && layout.uvs.as_ref().is_none_or(|u| u.len() == m)
+        && layout.normals.as_ref().is_none_or(|u| u.len() == m);
+    if !lengths_fit || layout.triangles.is_empty() {
+        return Err(GltfExportError::Layout(
+            "per-vertex lists of different lengths, or no triangles".into(),
+        ));
+    }
+    if let Some(w) = layout.welded.iter().flatten().find(|&&w| w as usize >= n) {
+        return Err(GltfExportError::Layout(format!(
+            "vertex {w} of {n} does not exist"
+        )));
+    }
+    if let Some(t) = layout.triangles.iter().position(|t| {
+        t.iter()
+            .any(|&i| layout.welded.get(i as usize).is_none_or(Option::is_none))
+    }) {
+        return Err(GltfExportError::Layout(format!(
+            "triangle {t} uses a vertex outside the mesh"
+        )));
+    }
+    Ok(())
+}
+
+/// Area-weighted unit vertex normals (`+z` for a vertex without area).
+pub fn vertex_normals(positions: &[DVec3], triangles: &[[u32; 3]]) -> Vec<DVec3> {
+    let mut normals = vec![DVec3::ZERO; positions.len()];
+    for t in triangles {
+        let [a, b, c] = t.map(|i| positions[i as usize]);
+        let n = (b - a).cross(c - a);
+        for &i in t {
+            normals[i as usize] += n;
+        }
+    }
+    normals
+        .into_iter()
+        .map(|n| n.try_normalize().unwrap_or(DVec3::Z))
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bad_inputs_are_typed_errors() {
+        let mut basis = MuscleBasis {
+            muscle_ids: vec!["m".into()],
+            neutral: vec![DVec3::ZERO, DVec3::X, DVec3::Y],
+            triangles: vec![[0, 1, 3]],
+            displacements: vec![vec![DVec3::ZERO; 3]],
+        };
+        let p = GltfParams::default();
+        assert!(matches!(
+            export_gltf(&basis, &p),
+            Err(GltfExportError::IndexOutOfRange { vertex: 3, .. })
+        ));
+        basis.triangles = vec![[0, 1, 2]];
+        basis.displacements[0].pop();
+        assert!(matches!(
+            export_gltf(&basis, &p),
+            Err(GltfExportError::FieldLength { got: 2, .. })
+        ));
+        basis.displacements[0].push(DVec3::new(f64::MAX, 0.0, 0.0));
+        assert!(matches!(
+            export_gltf(&basis, &p),
+            Err(GltfExportError::NonFinite { vertex: 2, .. })
+        ));
+    }
+}

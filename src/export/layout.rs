@@ -1,0 +1,316 @@
+//! The user's own vertex layout for glTF exports.
+//!
+//! glTF stores one POSITION, TEXCOORD_0 and NORMAL per vertex, whereas an OBJ corner picks a
+//! position (`v`), a texture coordinate (`vt`) and a normal (`vn`) independently. An
+//! [`ExportLayout`] lists the glTF vertices of the user's mesh:
+//!
+//! - **OBJ input**: glTF vertex `i` is `v` line `i` (0-based, file order) for every `i` below the
+//!   number of `v` lines `N`, with the `vt`/`vn` of the first face corner that uses it. A later
+//!   corner that uses the same `v` with another `vt` or `vn` (a UV seam or a hard edge) gets a
+//!   copy of that vertex appended after the `N` originals. The map back is
+//!   [`ExportLayout::input_index`]: glTF vertex `j` is a copy of `v` line `input_index[j]`
+//!   (`input_index[i] == i` for `i < N`); the export writes the tail `input_index[N..]` into
+//!   the glTF as `meshes[0].extras.seamCopyOf`. `v` lines no face uses are still written, at
+//!   their own position, with zero morph deltas.
+//! - **any other input** (glTF, a rig file without its OBJ text): the welded vertices of the
+//!   [`crate::MuscleBasis`] in their order ([`ExportLayout::welded`]).
+//!
+//! Texture coordinates are converted to glTF's convention (origin at the image's top left):
+//! `TEXCOORD_0 = (u, 1 − v)` of the OBJ's `vt u v`.
+
+use std::collections::HashMap;
+
+use glam::DVec3;
+
+/// Errors building an [`ExportLayout`] from an OBJ text.
+#[derive(Debug, thiserror::Error, PartialEq)]
+pub enum LayoutError {
+    /// A face corner refers to a `v`, `vt` or `vn` that does not exist or is not a number.
+    #[error("OBJ line {line}: bad face corner {corner:?}")]
+    BadCorner {
+        /// 1-based line number.
+        line: usize,
+        /// The corner as written.
+        corner: String,
+    },
+    /// The OBJ has another number of `v` lines than the face mesh was loaded from.
+    #[error("the OBJ has {found} `v` lines but the face mesh was loaded from {expected}")]
+    VertexCount {
+        /// Input positions of the face mesh.
+        expected: usize,
+        /// `v` lines in the text.
+        found: usize,
+    },
+    /// A face uses a `v` line the face mesh did not keep.
+    #[error("OBJ line {line}: `v` {vertex} is used by a face but not part of the face mesh")]
+    UnusedVertex {
+        /// 1-based line number of the face.
+        line: usize,
+        /// 1-based `v` index.
+        vertex: usize,
+    },
+}
+
+/// The glTF vertices of an export and where each one comes from (see the module docs).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ExportLayout {
+    /// Per glTF vertex: the welded vertex of the basis that gives its position and morph
+    /// deltas, or `None` for an input position no face uses (written at
+    /// [`ExportLayout::positions`], deltas 0).
+    pub welded: Vec<Option<u32>>,
+    /// Per glTF vertex: the input position (user frame, input units).
+    pub positions: Vec<DVec3>,
+    /// Per glTF vertex: the input position (OBJ `v` line, 0-based) it is a copy of.
+    pub input_index: Vec<u32>,
+    /// Number of input positions (`v` lines); glTF vertices from here on are seam copies.
+    pub input_count: usize,
+    /// Per glTF vertex: TEXCOORD_0 in glTF's convention, when the input has texture coordinates.
+    pub uvs: Option<Vec<[f32; 2]>>,
+    /// Per glTF vertex: the input's unit normal, when the input has normals (`None` entries:
+    /// corners without one, or a zero `vn`; the export uses the computed normal there).
+    pub normals: Option<Vec<Option<DVec3>>>,
+    /// Triangles indexing the glTF vertices, in file order (polygons fan-triangulated as the
+    /// importer does).
+    pub triangles: Vec<[u32; 3]>,
+}
+
+impl ExportLayout {
+    /// The welded vertices of a basis, in order: no texture coordinates, no input normals.
+    pub fn welded(neutral: &[DVec3], triangles: &[[u32; 3]]) -> ExportLayout {
+        let n = neutral.len();
+        ExportLayout {
+            welded: (0..n as u32).map(Some).collect(),
+            positions: neutral.to_vec(),
+            input_index: (0..n as u32).collect(),
+            input_count: n,
+            uvs: None,
+            normals: None,
+            triangles: triangles.to_vec(),
+        }
+    }
+
+    /// The layout of an OBJ text whose face mesh mapped its `v` lines to welded vertices by
+    /// `input_to_vertex` ([`face_prep::FaceMesh::input_to_vertex`]).
+    ///
+    /// ```
+    /// use facebem::export::layout::ExportLayout;
+    /// // Two triangles sharing the edge 1-3, with a UV seam at v 3.
+    /// let obj = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0.5 1\n\
+    ///            f 1/1 2/2 3/3\nf 1/1 3/4 4/4\n";
+    /// let map = [Some(0), Some(1), Some(2), Some(3)];
+    /// let layout = ExportLayout::from_obj(obj, &map).unwrap();
+    /// assert_eq!(layout.input_index, [0, 1, 2, 3, 2]); // glTF vertex 4 is a copy of v 3
+    /// assert_eq!(layout.triangles, [[0, 1, 2], [0, 4, 3]]);
+    /// assert_eq!(layout.uvs.unwrap()[4], [0.5, 0.0]); // (u, 1 - v)
+    /// ```
+    pub fn from_obj(text: &str, input_to_vertex: &[Option<u32>]) -> Result<Self, LayoutError> {
+        let mut positions = Vec::new();
+        let mut tex = Vec::new();
+        let mut nor = Vec::new();
+        // Corners as (v, vt, vn) indices, 0-based, per face.
+        let mut faces: Vec<(usize, Vec<Corner>)> = Vec::new();
+        for (line_index, line) in text.lines().enumerate() {
+            let mut words = line.split_whitespace();
+            let nums = |w: std::str::SplitWhitespace| -> Vec<f64> {
+                w.map_while(|t| t.parse::<f64>().ok()).collect()
+            };
+            match words.next() {
+                Some("v") => {
+                    let n = nums(words);
+                    if n.len() < 3 {
+                        continue;
+                    }
+                    let mut p = DVec3::new(n[0], n[1], n[2]);
+                    if n.len() == 4 && n[3] != 0.0 {
+                        p /= n[3];
+                    }
+                    positions.push(p);
+                }
+                Some("vt") => {
+                    let n = nums(words);
+                    tex.push([
+                        n.first().copied().unwrap_or(0.0),
+                        n.get(1).copied().unwrap_or(0.0),
+                    ]);
+                }
+                Some("vn") => {
+                    let n = nums(words);
+                    let v = DVec3::new(
+                        n.first().copied().unwrap_or(0.0),
+                        n.get(1).copied().unwrap_or(0.0),
+                        n.get(2).copied().unwrap_or(0.0),
+                    );
+                    nor.push(v.try_normalize());
+                }
+                Some("f") => {
+                    let counts = [positions.len(), tex.len(), nor.len()];
+                    let corners = words
+                        .map(|w| {
+                            parse_corner(w, counts).ok_or_else(|| LayoutError::BadCorner {
+                                line: line_index + 1,
+                                corner: w.to_string(),
+                            })
+                        })
+                        .collect::<Result<Vec<_>, _>>()?;
+                    if corners.len() >= 3 {
+                        faces.push((line_index + 1, corners));
+                    }
+                }
+                _ => {}
+            }
+        }
+        if positions.len() != input_to_vertex.len() {
+            return Err(LayoutError::VertexCount {
+                expected: input_to_vertex.len(),
+                found: positions.len(),
+            });
+        }
+        let n = positions.len();
+        let any_vt = faces.iter().flat_map(|f| &f.1).any(|c| c.vt.is_some());
+        let any_vn = faces.iter().flat_map(|f| &f.1).any(|c| c.vn.is_some());
+        let mut layout = ExportLayout {
+            welded: input_to_vertex.to_vec(),
+            positions: positions.clone(),
+            input_index: (0..n as u32).collect(),
+            input_count: n,
+            uvs: any_vt.then(|| vec![[0.0; 2]; n]),
+            normals: any_vn.then(|| vec![None; n]),
+            triangles: Vec::new(),
+        };
+        // The (vt, vn) each `v` was first used with, and the copies made for other pairs.
+        let mut first_use: Vec<Option<(Option<usize>, Option<usize>)>> = vec![None; n];
+        let mut copies: HashMap<Corner, u32> = HashMap::new();
+        for (line, corners) in &faces {
+            let mut ids = Vec::with_capacity(corners.len());
+            for c in corners {
+                if input_to_vertex[c.v].is_none() {
+                    return Err(LayoutError::UnusedVertex {
+                        line: *line,
+                        vertex: c.v + 1,
+                    });
+                }
+                let id = match first_use[c.v] {
+                    None => {
+                        first_use[c.v] = Some((c.vt, c.vn));
+                        layout.set_attributes(c.v, c, &tex, &nor);
+                        c.v as u32
+                    }
+                    Some(pair) if pair == (c.vt, c.vn) => c.v as u32,
+                    Some(_) => *copies.entry(*c).or_insert_with(|| {
+                        let id = layout.welded.len();
+                        layout.welded.push(input_to_vertex[c.v]);
+                        layout.positions.push(positions[c.v]);
+                        layout.input_index.push(c.v as u32);
+                        if let Some(uvs) = &mut layout.uvs {
+                            uvs.push([0.0; 2]);
+                        }
+                        if let Some(normals) = &mut layout.normals {
+                            normals.push(None);
+                        }
+                        layout.set_attributes(id, c, &tex, &nor);
+                        id as u32
+                    }),
+                };
+                ids.push(id);
+            }
+            for k in 2..ids.len() {
+                layout.triangles.push([ids[0], ids[k - 1], ids[k]]);
+            }
+        }
+        Ok(layout)
+    }
+
+    /// Number of glTF vertices.
+    pub fn len(&self) -> usize {
+        self.welded.len()
+    }
+
+    /// Whether the layout has no vertices.
+    pub fn is_empty(&self) -> bool {
+        self.welded.is_empty()
+    }
+
+    fn set_attributes(&mut self, id: usize, c: &Corner, tex: &[[f64; 2]], nor: &[Option<DVec3>]) {
+        if let (Some(uvs), Some(t)) = (&mut self.uvs, c.vt) {
+            let [u, v] = tex[t];
+            uvs[id] = [u as f32, (1.0 - v) as f32];
+        }
+        if let (Some(normals), Some(k)) = (&mut self.normals, c.vn) {
+            normals[id] = nor[k];
+        }
+    }
+}
+
+/// One face corner: 0-based `v`, `vt`, `vn` indices.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+struct Corner {
+    v: usize,
+    vt: Option<usize>,
+    vn: Option<usize>,
+}
+
+/// Parses `v`, `v/vt`, `v//vn` or `v/vt/vn` (1-based, or negative = relative to the end).
+fn parse_corner(word: &str, counts: [usize; 3]) -> Option<Corner> {
+    let mut parts = word.split('/');
+    let resolve = |s: Option<&str>, count: usize| -> Option<Option<usize>> {
+        match s {
+            None | Some("") => Some(None),
+            Some(s) => {
+                let i: i64 = s.parse().ok()?;
+                let idx = if i > 0 {
+                    usize::try_from(i - 1).ok()?
+                } else {
+                    count.checked_sub(usize::try_from(-i).ok()?)?
+                };
+                (idx < count).then_some(Some(idx))
+            }
+        }
+    };
+    let v = resolve(parts.next(), counts[0])??;
+    let vt = resolve(parts.next(), counts[1])?;
+    let vn = resolve(parts.next(), counts[2])?;
+    Some(Corner { v, vt, vn })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn negative_indices_normals_and_quads() {
+        let obj = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 5 5 5\nvn 0 0 2\nvn 0 1 0\n\
+                   f -5//-2 -4//-2 -3//-2 -2//-2\nf 1//2 3//1 4//1\n";
+        let map = [Some(0), Some(1), Some(2), Some(3), None];
+        let l = ExportLayout::from_obj(obj, &map).unwrap();
+        assert_eq!(l.triangles, [[0, 1, 2], [0, 2, 3], [5, 2, 3]]);
+        assert_eq!(l.input_index, [0, 1, 2, 3, 4, 0]);
+        assert_eq!(l.welded[4], None);
+        let normals = l.normals.unwrap();
+        assert_eq!(normals[0], Some(DVec3::Z));
+        assert_eq!(normals[5], Some(DVec3::Y));
+        assert_eq!(normals[4], None);
+        assert!(l.uvs.is_none());
+    }
+
+    #[test]
+    fn bad_corners_and_counts_are_errors() {
+        let obj = "v 0 0 0\nv 1 0 0\nv 1 1 0\nf 1 2 4\n";
+        let map = [Some(0), Some(1), Some(2)];
+        assert!(matches!(
+            ExportLayout::from_obj(obj, &map),
+            Err(LayoutError::BadCorner { line: 4, .. })
+        ));
+        assert!(matches!(
+            ExportLayout::from_obj("v 0 0 0\n", &map),
+            Err(LayoutError::VertexCount {
+                expected: 3,
+                found: 1
+            })
+        ));
+        let obj = "v 0 0 0\nv 1 0 0\nv 1 1 0\nf 1 2 3\n";
+        assert!(matches!(
+            ExportLayout::from_obj(obj, &[Some(0), None, Some(2)]),
+            Err(LayoutError::UnusedVertex { line: 4, vertex: 2 })
+        ));
+    }
+}
