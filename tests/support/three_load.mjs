@@ -1,0 +1,47 @@
+// Loads a .glb with three.js's GLTFLoader (as a three.js app would, from the file's bytes) and
+// prints what the app gets: meshes with their morph target names, materials, bounding box,
+// animation clips. Usage: node three_load.mjs <dir holding node_modules/three> <file.glb>
+import fs from 'node:fs';
+import path from 'node:path';
+import { pathToFileURL } from 'node:url';
+
+const dir = path.resolve(process.argv[2], 'node_modules', 'three');
+const THREE = await import(pathToFileURL(path.join(dir, 'build', 'three.module.js')));
+const { GLTFLoader } = await import(
+  pathToFileURL(path.join(dir, 'examples', 'jsm', 'loaders', 'GLTFLoader.js'))
+);
+const bytes = fs.readFileSync(process.argv[3]);
+const buffer = bytes.buffer.slice(bytes.byteOffset, bytes.byteOffset + bytes.byteLength);
+const gltf = await new Promise((resolve, reject) =>
+  new GLTFLoader().parse(buffer, '', resolve, reject),
+);
+const meshes = [];
+gltf.scene.traverse((o) => {
+  if (!o.isMesh) return;
+  const g = o.geometry;
+  meshes.push({
+    name: o.name,
+    vertices: g.attributes.position.count,
+    attributes: Object.keys(g.attributes).sort(),
+    morphTargets: Object.keys(o.morphTargetDictionary ?? {}),
+    morphTargetInfluences: o.morphTargetInfluences ?? [],
+    material: {
+      type: o.material.type,
+      name: o.material.name,
+      metalness: o.material.metalness,
+      roughness: o.material.roughness,
+      side: o.material.side,
+    },
+  });
+});
+const box = new THREE.Box3().setFromObject(gltf.scene);
+const size = box.getSize(new THREE.Vector3());
+console.log(
+  JSON.stringify({
+    revision: THREE.REVISION,
+    meshes,
+    size: [size.x, size.y, size.z],
+    animations: gltf.animations.map((a) => a.name),
+    copyright: gltf.asset.copyright ?? null,
+  }),
+);

@@ -1,0 +1,69 @@
+//! The README's three.js recipe, tested: the GLB of the default face loaded by three.js's own
+//! GLTFLoader (node, `tests/support/three_load.mjs`) is a face-sized mesh in metres with its
+//! morph targets by name, the replaceable skin material (metalness 0), no animation by default
+//! and the source's licence.
+
+mod support;
+
+use facebem::export::GltfParams;
+use facebem::{Control, PipelineParams, build_face_model};
+
+#[test]
+fn threejs_gltfloader_gets_a_face_sized_mesh_with_named_morph_targets() {
+    let (mesh, obj) = facebem::open::read_face(&support::asset(support::FACES[0])).unwrap();
+    let mut model = build_face_model(&mesh, &PipelineParams::default(), &Control::new()).unwrap();
+    model.obj_source = obj;
+    let dir = tempfile::tempdir().unwrap();
+    let glb = dir.path().join("face.glb");
+    model.write_gltf(&glb, &GltfParams::default()).unwrap();
+    let report = match support::load_with_threejs(&glb) {
+        support::Validation::NodeMissing => {
+            eprintln!("SKIPPED three.js load: node is not installed");
+            return;
+        }
+        support::Validation::Report(r) => r,
+    };
+    assert_eq!(report["revision"], "187", "{report}");
+    let meshes = report["meshes"].as_array().unwrap();
+    assert_eq!(meshes.len(), 1, "{report}");
+    let m = &meshes[0];
+    assert_eq!(m["vertices"], 468);
+    let names: Vec<&str> = m["morphTargets"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|n| n.as_str().unwrap())
+        .collect();
+    assert_eq!(
+        names.len(),
+        2 * model.basis.muscle_count() + facebem::presets::ALL.len() - 1
+    );
+    for id in model.muscle_ids() {
+        assert!(
+            names.contains(&format!("{id}_contract").as_str()),
+            "{names:?}"
+        );
+        assert!(names.contains(&format!("{id}_relax").as_str()), "{names:?}");
+    }
+    assert!(names.contains(&"preset_happy"), "{names:?}");
+    assert!(
+        m["morphTargetInfluences"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .all(|w| w.as_f64() == Some(0.0))
+    );
+    assert_eq!(m["material"]["type"], "MeshStandardMaterial");
+    assert_eq!(m["material"]["name"], facebem::export::MATERIAL_NAME);
+    assert_eq!(m["material"]["metalness"], 0.0);
+    // Metres: a face 12 to 30 cm tall, so a camera at the usual (0, 0, 5) sees it whole.
+    let height = report["size"][1].as_f64().unwrap();
+    assert!((0.12..=0.30).contains(&height), "height {height} m");
+    assert_eq!(report["animations"].as_array().unwrap().len(), 0);
+    assert!(
+        report["copyright"]
+            .as_str()
+            .is_some_and(|c| c.contains("MediaPipe")),
+        "{report}"
+    );
+}
