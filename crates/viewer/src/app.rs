@@ -90,6 +90,10 @@ struct RigJob {
     job: Job<(FaceModel, CacheStatus)>,
     control: Control,
     topology_id: u64,
+    /// When the job started (elapsed time and estimate in the status bar).
+    started: Instant,
+    /// Largest overall fraction shown so far (the bar never goes back).
+    shown_fraction: f32,
 }
 
 /// The viewer application state.
@@ -98,6 +102,8 @@ pub struct ViewerApp {
     face: Option<Face>,
     next_topology_id: u64,
     sliders: Vec<f64>,
+    /// The preset the sliders were last set to, until a slider moves.
+    active_preset: Option<&'static str>,
     posed: PosedMesh,
     uploaded_vertices: Arc<Vec<MeshVertex>>,
     uploaded_generation: u64,
@@ -142,6 +148,7 @@ impl ViewerApp {
             face: None,
             next_topology_id: 1,
             sliders: Vec::new(),
+            active_preset: None,
             posed: PosedMesh::default(),
             uploaded_vertices: Arc::default(),
             uploaded_generation: 0,
@@ -158,7 +165,7 @@ impl ViewerApp {
             rigging: None,
             exporting: None,
             export_dir: std::env::current_dir()
-                .map(|d| d.display().to_string())
+                .map(|d| home_relative(&d))
                 .unwrap_or_else(|_| ".".to_owned()),
             selection: None,
             edit_target: 0,
@@ -170,13 +177,22 @@ impl ViewerApp {
             frames_with_face: 0,
             ready_at: None,
         };
-        match start {
+        // Opened before the first frame, so the face is drawn at once (the rig follows in the
+        // background); the Open button reads files in the background instead.
+        let opened = match start {
             Some(Some(path)) => {
                 app.open_path = path.display().to_string();
-                app.open(&cc.egui_ctx, path);
+                Some(
+                    facebem::open::open(&path)
+                        .map(|o| (file_name(&path), o))
+                        .map_err(|e| e.to_string()),
+                )
             }
-            Some(None) => app.open_default_face(&cc.egui_ctx),
-            None => {}
+            Some(None) => Some(default_face_opened()),
+            None => None,
+        };
+        if let Some(result) = opened {
+            app.opened(&cc.egui_ctx, result);
         }
         app
     }
@@ -201,10 +217,7 @@ impl ViewerApp {
     /// Starts opening the bundled default face (compiled into the program).
     pub fn open_default_face(&mut self, ctx: &egui::Context) {
         let job = Job::spawn("Opening the default face", Some(ctx.clone()), move |_| {
-            let mesh = facebem::open::default_face().map_err(|e| e.to_string())?;
-            let obj_source = Some(facebem::open::DEFAULT_FACE_OBJ.to_owned());
-            let name = facebem::open::DEFAULT_FACE_NAME.to_owned();
-            Ok((name, Opened::Face { mesh, obj_source }))
+            default_face_opened()
         });
         self.loading = Some(job);
     }
@@ -225,6 +238,7 @@ impl ViewerApp {
         let triangles: Vec<u32> = basis.triangles.iter().flatten().copied().collect();
         let edges = edge_indices(&basis.triangles);
         self.sliders = vec![0.0; basis.muscle_count()];
+        self.active_preset = None;
         if reframe && let Some((c, r)) = bounding_sphere(&basis.neutral) {
             self.camera = OrbitCamera::framing(c.as_vec3(), r as f32);
         }
@@ -295,6 +309,7 @@ impl ViewerApp {
     /// Sets every slider at once (clamped to −1…1; extra or missing values are ignored) and
     /// re-blends the pose, as moving the sliders would.
     pub fn set_sliders(&mut self, values: &[f64]) {
+        self.active_preset = None;
         for (s, v) in self.sliders.iter_mut().zip(values) {
             *s = if v.is_finite() {
                 v.clamp(-1.0, 1.0)
@@ -312,8 +327,30 @@ impl ViewerApp {
             return false;
         };
         self.sliders = p.sliders_for(&face.basis.muscle_ids);
+        self.active_preset = Some(p.name);
         self.repose();
         true
+    }
+
+    /// The preset the sliders are set to, until a slider moves (highlighted in the UI).
+    pub fn active_preset(&self) -> Option<&'static str> {
+        self.active_preset
+    }
+
+    /// Whether the export buttons are enabled: a rig is displayed (the face has muscles), and
+    /// no rig computation or export is running. `Err` says why not (the buttons' tooltip).
+    pub fn exports_ready(&self) -> Result<(), &'static str> {
+        match &self.face {
+            None => Err("No face is open"),
+            Some(_) if self.rigging.is_some() => {
+                Err("The muscle rig is being computed; exports are enabled when it is ready")
+            }
+            Some(f) if f.basis.muscle_count() == 0 => {
+                Err("The face has no muscle rig yet: exports are enabled when it is ready")
+            }
+            Some(_) if self.exporting.is_some() => Err("An export is being written"),
+            Some(_) => Ok(()),
+        }
     }
 
     /// The vertices handed to the renderer in the last frame (CPU blend of the basis).
@@ -366,9 +403,19 @@ impl ViewerApp {
         self.refresh_overlays();
     }
 
-    /// Sets the folder exports are written to.
+    /// Sets the folder exports are written to (shown relative to the home folder, `~/…`).
     pub fn set_export_dir(&mut self, dir: &Path) {
-        self.export_dir = dir.display().to_string();
+        self.export_dir = home_relative(dir);
+    }
+
+    /// The export folder as the UI shows it (`~/…` under the home folder).
+    pub fn export_dir_text(&self) -> &str {
+        &self.export_dir
+    }
+
+    /// The export folder as a path (`~` expanded).
+    pub fn export_dir(&self) -> PathBuf {
+        expand_home(self.export_dir.trim())
     }
 
     /// The camera (for tests and scripted views).
@@ -394,11 +441,15 @@ impl ViewerApp {
     /// Starts writing the current face in the background (`kind` says what); the outcome is
     /// reported in the status message.
     pub fn export(&mut self, ctx: &egui::Context, kind: ExportKind) {
+        if let Err(why) = self.exports_ready() {
+            self.error(format!("{}: {why}", kind.label()));
+            return;
+        }
         let Some(face) = &self.face else { return };
         let stem = Path::new(&face.name)
             .file_stem()
             .map_or_else(|| "face".to_owned(), |s| s.to_string_lossy().into_owned());
-        let dir = PathBuf::from(self.export_dir.trim());
+        let dir = self.export_dir();
         let basis = face.basis.clone();
         let model = face.model.clone();
         let sliders = self.sliders.clone();
@@ -516,30 +567,7 @@ impl ViewerApp {
             && let Some(result) = job.poll()
         {
             self.loading = None;
-            match result {
-                Ok((name, Opened::Model(model))) => {
-                    self.info(format!(
-                        "Opened the saved rig {name} ({} triangles, {} muscles)",
-                        model.basis.triangles.len(),
-                        model.basis.muscle_count()
-                    ));
-                    self.cancel_rig();
-                    self.rigging = None;
-                    self.set_model(name, *model);
-                }
-                Ok((name, Opened::Face { mesh, obj_source })) => {
-                    self.info(format!(
-                        "Opened {name} ({} triangles); computing its muscle rig…",
-                        mesh.triangles.len()
-                    ));
-                    let basis = source::preview_basis(&mesh);
-                    let source = Arc::new((mesh, obj_source));
-                    self.params = PipelineParams::default();
-                    self.install_face(name, basis, Some(source), None, true);
-                    self.rebuild_rig(ctx);
-                }
-                Err(e) => self.error(format!("Could not open: {e}")),
-            }
+            self.opened(ctx, result);
         }
         if let Some(r) = &mut self.rigging
             && let Some(result) = r.job.poll()
@@ -587,6 +615,35 @@ impl ViewerApp {
                 }
                 Err(e) => self.error(format!("Rig computation stopped: {e}")),
             }
+        }
+    }
+
+    /// Shows what a file turned out to hold: a saved rig at once, a face as its preview with
+    /// its rig computed (or loaded from the cache) in the background.
+    fn opened(&mut self, ctx: &egui::Context, result: Result<(String, Opened), String>) {
+        match result {
+            Ok((name, Opened::Model(model))) => {
+                self.info(format!(
+                    "Opened the saved rig {name} ({} triangles, {} muscles)",
+                    model.basis.triangles.len(),
+                    model.basis.muscle_count()
+                ));
+                self.cancel_rig();
+                self.rigging = None;
+                self.set_model(name, *model);
+            }
+            Ok((name, Opened::Face { mesh, obj_source })) => {
+                self.info(format!(
+                    "Opened {name} ({} triangles); computing its muscle rig…",
+                    mesh.triangles.len()
+                ));
+                let basis = source::preview_basis(&mesh);
+                let source = Arc::new((mesh, obj_source));
+                self.params = PipelineParams::default();
+                self.install_face(name, basis, Some(source), None, true);
+                self.rebuild_rig(ctx);
+            }
+            Err(e) => self.error(format!("Could not open: {e}")),
         }
     }
 
@@ -652,6 +709,53 @@ impl ViewerApp {
 impl eframe::App for ViewerApp {
     fn ui(&mut self, ui: &mut egui::Ui, _frame: &mut eframe::Frame) {
         self.show(ui);
+    }
+}
+
+/// The bundled default face, as [`facebem::open::open`] would return it.
+fn default_face_opened() -> Result<(String, Opened), String> {
+    let mesh = facebem::open::default_face().map_err(|e| e.to_string())?;
+    let obj_source = Some(facebem::open::DEFAULT_FACE_OBJ.to_owned());
+    let name = facebem::open::DEFAULT_FACE_NAME.to_owned();
+    Ok((name, Opened::Face { mesh, obj_source }))
+}
+
+/// The home folder (`$HOME`), if set.
+fn home_dir() -> Option<PathBuf> {
+    std::env::var_os("HOME")
+        .filter(|h| !h.is_empty())
+        .map(PathBuf::from)
+}
+
+/// `dir` as the UI shows it: `~` or `~/rest` under the home folder, else as is.
+///
+/// ```
+/// use viewer::app::{expand_home, home_relative};
+/// if let Some(home) = std::env::var_os("HOME").filter(|h| !h.is_empty()) {
+///     let dir = std::path::Path::new(&home).join("faces");
+///     assert_eq!(home_relative(&dir), "~/faces");
+///     assert_eq!(expand_home("~/faces"), dir);
+/// }
+/// assert_eq!(home_relative("/nonexistent-root/x".as_ref()), "/nonexistent-root/x");
+/// ```
+pub fn home_relative(dir: &Path) -> String {
+    match home_dir().and_then(|h| dir.strip_prefix(h).ok().map(Path::to_path_buf)) {
+        Some(rest) if rest.as_os_str().is_empty() => "~".to_owned(),
+        Some(rest) => format!("~/{}", rest.display()),
+        None => dir.display().to_string(),
+    }
+}
+
+/// The inverse of [`home_relative`]: a leading `~` or `~/` becomes the home folder.
+pub fn expand_home(text: &str) -> PathBuf {
+    let rest = match text.strip_prefix('~') {
+        Some("") => Some(""),
+        Some(r) if r.starts_with('/') => Some(&r[1..]),
+        _ => None,
+    };
+    match (rest, home_dir()) {
+        (Some(rest), Some(home)) => home.join(rest),
+        _ => PathBuf::from(text),
     }
 }
 

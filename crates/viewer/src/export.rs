@@ -1,6 +1,8 @@
-//! Export buttons: what they write and where.
+//! Export buttons: what they write and where. An export never replaces an existing file: it
+//! writes the first free name of `<stem>.glb`, `<stem> (2).glb`, `<stem> (3).glb`, …
+//! ([`free_path`]).
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use facebem::{FaceModel, MuscleBasis};
@@ -66,11 +68,34 @@ pub struct ExportRequest {
     pub sliders: Vec<f64>,
 }
 
-/// Writes the export `kind` of `request` atomically; returns the file written.
+/// The first of `dir/<stem><ext>`, `dir/<stem> (2)<ext>`, `dir/<stem> (3)<ext>`, … that does not
+/// exist (`ext` with its dot, e.g. `".glb"`).
+///
+/// ```
+/// let dir = tempfile::tempdir().unwrap();
+/// let first = viewer::export::free_path(dir.path(), "face", ".glb");
+/// assert_eq!(first, dir.path().join("face.glb"));
+/// std::fs::write(&first, b"x").unwrap();
+/// assert_eq!(viewer::export::free_path(dir.path(), "face", ".glb"), dir.path().join("face (2).glb"));
+/// ```
+pub fn free_path(dir: &Path, stem: &str, ext: &str) -> PathBuf {
+    let first = dir.join(format!("{stem}{ext}"));
+    if !first.exists() {
+        return first;
+    }
+    (2u64..)
+        .map(|k| dir.join(format!("{stem} ({k}){ext}")))
+        .find(|p| !p.exists())
+        .unwrap_or(first)
+}
+
+/// Writes the export `kind` of `request` atomically, under a free name ([`free_path`]);
+/// returns the file written.
 pub fn write_export(kind: ExportKind, request: &ExportRequest) -> Result<PathBuf, ExportError> {
+    let path_for = |suffix: &str| free_path(&request.dir, &request.stem, suffix);
     Ok(match kind {
         ExportKind::ObjPose => {
-            let path = request.dir.join(format!("{}_pose.obj", request.stem));
+            let path = path_for("_pose.obj");
             let posed = request.basis.pose(&request.sliders)?;
             let text = match request.model.as_deref() {
                 Some(FaceModel {
@@ -84,13 +109,17 @@ pub fn write_export(kind: ExportKind, request: &ExportRequest) -> Result<PathBuf
             path
         }
         ExportKind::Gltf => {
-            let path = request.dir.join(format!("{}.glb", request.stem));
+            let path = path_for(".glb");
             let params = facebem::export::GltfParams::default();
-            facebem::export::write_gltf(&path, &request.basis, &params)?;
+            match request.model.as_deref() {
+                // The user's vertex layout, metres, attribution.
+                Some(model) => model.write_gltf(&path, &params)?,
+                None => facebem::export::write_gltf(&path, &request.basis, &params)?,
+            }
             path
         }
         ExportKind::MuscleFile => {
-            let path = request.dir.join(format!("{}.muscles", request.stem));
+            let path = path_for(".muscles");
             let model = request.model.as_deref().ok_or(ExportError::NoRig)?;
             face_prep::muscle_file::save(&path, &model.rig.muscles)?;
             path

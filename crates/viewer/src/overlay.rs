@@ -32,6 +32,21 @@ impl Default for OverlayOptions {
     }
 }
 
+/// Name of the colour [`muscle_color`] gives muscle number `index` (shown in the legend, so it
+/// can be told apart without telling the hues apart).
+pub fn muscle_color_name(index: usize) -> &'static str {
+    const NAMES: [&str; 10] = [
+        "red", "blue", "green", "orange", "purple", "teal", "pink", "brown", "grey", "yellow",
+    ];
+    NAMES[index % NAMES.len()]
+}
+
+/// Palette index of muscle number `index` of a rig's muscle list: the standard muscles keep
+/// their colour whatever their position in the list.
+pub fn muscle_color_index(index: usize, muscle: &face_prep::Muscle) -> usize {
+    muscle.kind.map_or(index, |k| k.index())
+}
+
 /// Colour of muscle number `index` (ten distinct hues, then repeating).
 pub fn muscle_color(index: usize) -> [f32; 4] {
     const PALETTE: [[f32; 3]; 10] = [
@@ -194,7 +209,7 @@ pub fn overlay_lines(
     }
     if options.muscles {
         for (i, m) in muscles.unwrap_or(&rig.muscles).iter().enumerate() {
-            let color = muscle_color(m.kind.map_or(i, |k| k.index()));
+            let color = muscle_color(muscle_color_index(i, m));
             chain_lines(&mut out, rig, geo, &m.front_chain, color, 1.0, view_normal);
             if options.whole_shell {
                 chain_lines(&mut out, rig, geo, &m.back_chain, color, 0.5, -view_normal);

@@ -269,10 +269,25 @@ fn first_run_computes_and_caches_the_default_rig_and_the_second_run_loads_it() {
     second.step();
     common::wait_idle(&mut second);
     let basis = second.state().basis().unwrap();
-    assert_eq!(basis.triangles, model.basis.triangles);
     assert_eq!(basis.muscle_count(), 0, "rig cancelled: the preview stays");
-    for (a, b) in basis.neutral.iter().zip(&model.basis.neutral) {
-        assert!((*a - *b).length() < 1e-5, "{a} vs {b}");
+    // The GLB holds the OBJ's `v` lines in order, in metres: its vertex i is the model's
+    // vertex input_to_vertex[i].
+    let itv: Vec<u32> = model
+        .mesh
+        .input_to_vertex
+        .iter()
+        .map(|w| w.unwrap())
+        .collect();
+    let mapped: Vec<[u32; 3]> = basis
+        .triangles
+        .iter()
+        .map(|t| t.map(|i| itv[i as usize]))
+        .collect();
+    assert_eq!(mapped, model.basis.triangles);
+    let metres = model.metres_per_unit();
+    for (i, a) in basis.neutral.iter().enumerate() {
+        let b = model.basis.neutral[itv[i] as usize] * metres;
+        assert!((*a - b).length() < 1e-5 * metres, "{a} vs {b}");
     }
 }
 
@@ -762,5 +777,130 @@ fn a_rig_with_intersecting_shell_elements_is_flagged() {
             .contains(&format!("{crossings} pairs of shell elements intersect")),
         "{}",
         msg.text
+    );
+}
+
+#[test]
+fn the_face_is_drawn_at_once_exports_wait_for_the_rig_and_the_legend_names_every_muscle() {
+    use egui_kittest::kittest::NodeT;
+    let cache = tempfile::tempdir().unwrap();
+    let options = viewer::ViewerOptions {
+        cache_dir: Some(cache.path().to_path_buf()),
+        ..Default::default()
+    };
+    let mut harness = egui_kittest::Harness::builder()
+        .with_size([1100.0, 1000.0])
+        .wgpu()
+        .build_eframe(move |cc| viewer::ViewerApp::new(cc, options.clone()));
+    // The first frame already holds the default face (the rig is computed in the background).
+    assert_eq!(harness.state().uploaded_vertices().len(), 468);
+    assert!(harness.state().is_rigging());
+    harness.step();
+    for label in ["Export OBJ pose", "Export glTF", "Save muscle file"] {
+        assert!(
+            harness.get_by_label(label).accesskit_node().is_disabled(),
+            "{label} is enabled while the rig computes"
+        );
+    }
+    let why = harness.state().exports_ready().unwrap_err();
+    assert!(why.contains("being computed"), "{why}");
+    // Clicking a disabled button does nothing; calling export directly is refused.
+    let out = tempfile::tempdir().unwrap();
+    harness.state_mut().set_export_dir(out.path());
+    harness.get_by_label("Export glTF").click();
+    harness.step();
+    assert_eq!(std::fs::read_dir(out.path()).unwrap().count(), 0);
+
+    common::wait_idle(&mut harness);
+    let model = harness.state().model().expect("rig computed").clone();
+    for label in ["Export OBJ pose", "Export glTF", "Save muscle file"] {
+        assert!(!harness.get_by_label(label).accesskit_node().is_disabled());
+    }
+    // The legend names every muscle of the rig with its colour.
+    assert!(!model.rig.muscles.is_empty());
+    for (i, m) in model.rig.muscles.iter().enumerate() {
+        let kind = m.kind.expect("standard muscles on the default face");
+        let colour = viewer::overlay::muscle_color_name(viewer::overlay::muscle_color_index(i, m));
+        harness.get_by_label(&format!("{}: {colour}", kind.display_name()));
+    }
+    // Every standard muscle has its own colour name.
+    let mut names: Vec<&str> = model
+        .rig
+        .muscles
+        .iter()
+        .enumerate()
+        .map(|(i, m)| viewer::overlay::muscle_color_name(viewer::overlay::muscle_color_index(i, m)))
+        .collect();
+    names.sort_unstable();
+    names.dedup();
+    assert_eq!(names.len(), model.rig.muscles.len());
+}
+
+#[test]
+fn exporting_twice_keeps_the_first_file_and_writes_a_numbered_one() {
+    let dir = tempfile::tempdir().unwrap();
+    let basis = common::synthetic_default_basis();
+    let mut harness = common::harness_with(Some(basis));
+    harness.state_mut().set_export_dir(dir.path());
+    let first = dir.path().join("mediapipe_canonical_4loop.glb");
+    let second = dir.path().join("mediapipe_canonical_4loop (2).glb");
+    harness.get_by_label("Export glTF").click();
+    harness.step();
+    common::wait_idle(&mut harness);
+    assert_eq!(&std::fs::read(&first).unwrap()[..4], b"glTF");
+    // The user's own file of that name (e.g. an edited export) must survive.
+    std::fs::write(&first, b"the user's file").unwrap();
+    harness.get_by_label("Export glTF").click();
+    harness.step();
+    common::wait_idle(&mut harness);
+    assert_eq!(std::fs::read(&first).unwrap(), b"the user's file");
+    assert_eq!(&std::fs::read(&second).unwrap()[..4], b"glTF");
+    let msg = harness.state().message().cloned().unwrap();
+    assert!(
+        !msg.is_error && msg.text.contains("(2).glb"),
+        "{}",
+        msg.text
+    );
+}
+
+#[test]
+fn the_active_preset_is_highlighted_until_a_slider_moves() {
+    use egui_kittest::kittest::NodeT;
+    let basis = common::synthetic_default_basis();
+    let mut harness = common::harness_with(Some(basis));
+    assert_eq!(harness.state().active_preset(), None);
+    harness.get_by_label("Laugh").click();
+    harness.run();
+    assert_eq!(harness.state().active_preset(), Some("laugh"));
+    let toggled = |h: &egui_kittest::Harness<'_, viewer::ViewerApp>, label: &str| {
+        h.get_by_label(label).accesskit_node().toggled() == Some(egui::accesskit::Toggled::True)
+    };
+    assert!(toggled(&harness, "Laugh"));
+    assert!(!toggled(&harness, "Smile"));
+    harness
+        .get_by_role_and_label(Role::Slider, "Mentalis L")
+        .set_value_accesskit(-0.3);
+    harness.run();
+    assert_eq!(harness.state().active_preset(), None);
+    assert!(!toggled(&harness, "Laugh"));
+}
+
+#[test]
+fn the_export_folder_is_shown_relative_to_home() {
+    let Some(home) = std::env::var_os("HOME").filter(|h| !h.is_empty()) else {
+        eprintln!("SKIPPED: HOME is not set");
+        return;
+    };
+    let mut harness = common::harness_with(None);
+    let dir = std::path::Path::new(&home).join("facebem-exports");
+    harness.state_mut().set_export_dir(&dir);
+    harness.run();
+    assert_eq!(harness.state().export_dir_text(), "~/facebem-exports");
+    assert_eq!(harness.state().export_dir(), dir);
+    assert!(
+        harness
+            .get_all_by_value("~/facebem-exports")
+            .next()
+            .is_some()
     );
 }

@@ -6,6 +6,7 @@ use eframe::egui;
 
 use super::{ExportKind, ViewerApp, muscle_label, preset_label};
 use crate::muscle_edit::insert_into_chain;
+use crate::overlay::{muscle_color, muscle_color_index, muscle_color_name};
 
 impl ViewerApp {
     pub(super) fn toolbar(&mut self, ui: &mut egui::Ui) {
@@ -52,6 +53,7 @@ impl ViewerApp {
             ui.label("The muscle rig is not computed yet.");
         }
         let mut changed = false;
+        let mut preset_clicked = None;
         for (id, value) in ids.iter().zip(self.sliders.iter_mut()) {
             let name = face_prep::MuscleKind::from_id(id).map_or(id.as_str(), |m| m.display_name());
             changed |= ui
@@ -68,19 +70,57 @@ impl ViewerApp {
                 changed = true;
             }
             for preset in facebem::presets::ALL.iter().filter(|p| p.name != "neutral") {
-                let button = egui::Button::new(preset_label(preset.name));
+                let active = self.active_preset == Some(preset.name);
+                let button = egui::Button::new(preset_label(preset.name)).selected(active);
                 let r = ui
                     .add_enabled(enabled, button)
                     .on_hover_text(format!("{} ({})", preset.description, preset.action_units));
                 if r.clicked() {
                     self.sliders = preset.sliders_for(&ids);
+                    preset_clicked = Some(preset.name);
                     changed = true;
                 }
             }
         });
         if changed {
+            self.active_preset = preset_clicked;
             self.repose();
         }
+    }
+
+    /// A colour swatch and the muscle's name with its colour's name, per muscle of the rig.
+    pub(super) fn legend_ui(&mut self, ui: &mut egui::Ui) {
+        let Some(muscles) = self.pending_muscles() else {
+            return;
+        };
+        let rows: Vec<(egui::Color32, String)> = muscles
+            .iter()
+            .enumerate()
+            .map(|(i, m)| {
+                let c = muscle_color_index(i, m);
+                let [r, g, b, _] = muscle_color(c).map(|x| (x * 255.0).round() as u8);
+                let name = format!("{}: {}", muscle_label(m), muscle_color_name(c));
+                (egui::Color32::from_rgb(r, g, b), name)
+            })
+            .collect();
+        egui::CollapsingHeader::new("Muscle colours")
+            .default_open(true)
+            .show(ui, |ui| {
+                egui::Grid::new("legend").num_columns(2).show(ui, |ui| {
+                    for (k, (color, name)) in rows.iter().enumerate() {
+                        ui.horizontal(|ui| {
+                            let (rect, _) = ui
+                                .allocate_exact_size(egui::vec2(12.0, 12.0), egui::Sense::hover());
+                            ui.painter().rect_filled(rect, 2.0, *color);
+                            ui.label(name);
+                        });
+                        if k % 2 == 1 {
+                            ui.end_row();
+                        }
+                    }
+                });
+                ui.label("Darker at a muscle's start; the arrow shows its pull.");
+            });
     }
 
     pub(super) fn view_ui(&mut self, ui: &mut egui::Ui) {
@@ -101,6 +141,9 @@ impl ViewerApp {
         });
         if o != self.overlays {
             self.set_overlays(o);
+        }
+        if self.overlays.muscles {
+            self.legend_ui(ui);
         }
         ui.label("Drag: orbit · right/middle or shift-drag: pan · wheel: zoom · click: pick");
         if let Some(sel) = &self.selection {
@@ -266,21 +309,28 @@ impl ViewerApp {
         ui.horizontal(|ui| {
             let label = ui.label("Export folder");
             ui.add(egui::TextEdit::singleline(&mut self.export_dir).desired_width(180.0))
-                .labelled_by(label.id);
+                .labelled_by(label.id)
+                .on_hover_text("~ is your home folder. Existing files are never replaced: a second export is named “… (2)”.");
         });
         ui.horizontal_wrapped(|ui| {
-            let idle = self.exporting.is_none();
+            let ready = self.exports_ready();
             let has_rig = self.model().is_some();
             for kind in [
                 ExportKind::ObjPose,
                 ExportKind::Gltf,
                 ExportKind::MuscleFile,
             ] {
-                let enabled = idle && (kind != ExportKind::MuscleFile || has_rig);
-                if ui
-                    .add_enabled(enabled, egui::Button::new(kind.label()))
-                    .clicked()
-                {
+                let why = match ready {
+                    Err(why) => Some(why),
+                    Ok(()) if kind == ExportKind::MuscleFile && !has_rig => {
+                        Some("This face has no computed rig, so no muscles to save")
+                    }
+                    Ok(()) => None,
+                };
+                let r = ui
+                    .add_enabled(why.is_none(), egui::Button::new(kind.label()))
+                    .on_disabled_hover_text(why.unwrap_or_default());
+                if r.clicked() {
                     self.export(ui.ctx(), kind);
                 }
             }
@@ -294,17 +344,34 @@ impl ViewerApp {
                 ui.label(job.label());
             });
         }
-        let job = match (&self.loading, &self.rigging) {
+        let job = match (&self.loading, &mut self.rigging) {
             (Some(j), _) => Some((
                 j.label().to_owned(),
                 j.control().fraction(),
                 j.control().stage(),
             )),
-            (None, Some(r)) => Some((
-                r.job.label().to_owned(),
-                r.job.control().fraction(),
-                r.job.control().stage(),
-            )),
+            (None, Some(r)) => {
+                // One bar over all stages (weighted by their typical share of the time), never
+                // going back, with the elapsed time and a linear estimate of the rest.
+                r.shown_fraction = r.shown_fraction.max(r.job.control().fraction());
+                let f = r.shown_fraction;
+                let elapsed = r.started.elapsed().as_secs_f32();
+                let estimate = if f > 0.02 {
+                    format!(", about {} left", seconds_text(elapsed * (1.0 - f) / f))
+                } else {
+                    String::new()
+                };
+                Some((
+                    r.job.label().to_owned(),
+                    f,
+                    format!(
+                        "{:.0} % · {} · {} elapsed{estimate}",
+                        100.0 * f,
+                        r.job.control().stage(),
+                        seconds_text(elapsed)
+                    ),
+                ))
+            }
             (None, None) => None,
         };
         let Some((label, fraction, stage)) = job else {
@@ -315,6 +382,10 @@ impl ViewerApp {
             });
             return;
         };
+        if self.rigging.is_some() {
+            ui.ctx()
+                .request_repaint_after(std::time::Duration::from_millis(250));
+        }
         let mut cancel = false;
         ui.horizontal(|ui| {
             ui.label(label);
@@ -328,5 +399,17 @@ impl ViewerApp {
         if cancel {
             self.cancel_rig();
         }
+    }
+}
+
+/// `3.2 s`, `42 s`, `2 min 05 s`.
+fn seconds_text(seconds: f32) -> String {
+    if seconds < 10.0 {
+        format!("{seconds:.1} s")
+    } else if seconds < 60.0 {
+        format!("{seconds:.0} s")
+    } else {
+        let s = seconds.round() as u64;
+        format!("{} min {:02} s", s / 60, s % 60)
     }
 }

@@ -73,6 +73,8 @@ impl ViewerApp {
             job,
             control,
             topology_id: face.topology_id,
+            started: std::time::Instant::now(),
+            shown_fraction: 0.0,
         });
     }
 
