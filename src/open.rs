@@ -47,7 +47,8 @@ pub enum OpenError {
 /// What a file turned out to hold.
 #[derive(Debug)]
 pub enum Opened {
-    /// A face mesh that still needs [`build_face_model`]; `obj_source` is its OBJ text if any.
+    /// A face mesh that still needs [`build_face_model`]; `obj_source` is its layout as OBJ
+    /// text (see [`read_face`]).
     Face {
         /// The validated mesh.
         mesh: FaceMesh,
@@ -82,7 +83,9 @@ pub fn open_with_limits(path: &Path, limits: &InputLimits) -> Result<Opened, Ope
     Ok(Opened::Face { mesh, obj_source })
 }
 
-/// Reads a face mesh file (OBJ, glTF, GLB), keeping the OBJ text for exports.
+/// Reads a face mesh file (OBJ, glTF, GLB), keeping its layout as OBJ text for exports: the
+/// file itself for OBJ, an equivalent OBJ (`v`/`vt`/`vn`/`f` in the glTF's vertex order,
+/// [`crate::export::layout::obj_text_of_gltf`]) for glTF.
 pub fn read_face(path: &Path) -> Result<(FaceMesh, Option<String>), OpenError> {
     let limits = InputLimits::default();
     let bytes = read_bytes(path, &limits)?;
@@ -134,9 +137,12 @@ fn face_from_bytes(
                 extension: ext,
             }));
         }
-        let mesh =
-            FaceMesh::from_gltf_bytes(bytes, path.parent(), None, limits).map_err(face_err)?;
-        Ok((mesh, None))
+        // Kept as an equivalent OBJ text (the glTF's vertex order, TEXCOORD_0 and normals), so
+        // poses and glTF exports keep the user's layout as they do for OBJ input.
+        let data =
+            face_prep::gltf_face_data(bytes, path.parent(), None, limits).map_err(face_err)?;
+        let mesh = FaceMesh::from_triangles(&data.positions, &data.triangles).map_err(face_err)?;
+        Ok((mesh, Some(crate::export::layout::obj_text_of_gltf(&data))))
     }
 }
 
@@ -164,7 +170,11 @@ pub fn load_or_build(
     control: &Control,
 ) -> Result<(FaceModel, CacheStatus), PipelineError> {
     let reason = match cache::load_for(cache_path, mesh, params) {
-        Ok(model) => return Ok((model, CacheStatus::Loaded)),
+        Ok(mut model) => {
+            // The cache is keyed by geometry: the layout (UVs, normals, comments) is this file's.
+            model.obj_source = obj_source;
+            return Ok((model, CacheStatus::Loaded));
+        }
         Err(e) => e.to_string(),
     };
     let mut model = build_face_model(mesh, params, control)?;

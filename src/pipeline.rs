@@ -149,8 +149,10 @@ pub struct SimplifiedFace {
 pub struct FaceModel {
     /// The user's face mesh (input frame, welded).
     pub mesh: FaceMesh,
-    /// The original OBJ text when the face came from an OBJ file: poses are written by
-    /// replacing only its `v` lines, keeping the user's vertex order, UVs and normals.
+    /// The original OBJ text when the face came from an OBJ file (for a glTF file, an
+    /// equivalent OBJ in its vertex order, [`crate::export::layout::obj_text_of_gltf`]): poses
+    /// are written by replacing only its `v` lines, keeping the user's vertex order, UVs and
+    /// normals, and glTF exports use its layout.
     pub obj_source: Option<String>,
     /// The rig (canonical frame) the BEM was solved on: of the simplified mesh for a large face.
     pub rig: FaceRig,

@@ -153,3 +153,52 @@ fn glb_keeps_v_line_order_texcoords_and_normals_of_the_obj() {
         assert!((got - want).length() < 1e-6, "corner {k}: {got} vs {want}");
     }
 }
+
+#[test]
+fn glb_input_keeps_its_vertex_order_and_texcoords() {
+    // A GLB with UVs and a seam: the textured OBJ's export, read back as the input.
+    let text = textured_default_face();
+    let dir = tempfile::tempdir().unwrap();
+    let obj = dir.path().join("textured.obj");
+    std::fs::write(&obj, &text).unwrap();
+    let (mesh, obj_source) = facebem::open::read_face(&obj).unwrap();
+    let mut model = build_face_model(&mesh, &PipelineParams::default(), &Control::new()).unwrap();
+    model.obj_source = obj_source;
+    let input = dir.path().join("input.glb");
+    model.write_gltf(&input, &GltfParams::default()).unwrap();
+
+    let (gmesh, layout) = facebem::open::read_face(&input).unwrap();
+    let mut from_glb =
+        build_face_model(&gmesh, &PipelineParams::default(), &Control::new()).unwrap();
+    from_glb.obj_source = layout;
+    let output = dir.path().join("output.glb");
+    from_glb
+        .write_gltf(&output, &GltfParams::default())
+        .unwrap();
+    support::assert_valid(&output);
+
+    let read = |path: &std::path::Path| {
+        let (doc, buffers, _) = gltf::import(path).unwrap();
+        let prim = doc.meshes().next().unwrap().primitives().next().unwrap();
+        let r = prim.reader(|b| Some(&buffers[b.index()]));
+        let p: Vec<[f32; 3]> = r.read_positions().unwrap().collect();
+        let t: Vec<[f32; 2]> = r.read_tex_coords(0).unwrap().into_f32().collect();
+        let i: Vec<u32> = r.read_indices().unwrap().into_u32().collect();
+        (p, t, i)
+    };
+    let (p_in, t_in, i_in) = read(&input);
+    let (p_out, t_out, i_out) = read(&output);
+    assert_eq!(t_out, t_in, "TEXCOORD_0 kept exactly, in the input's order");
+    assert_eq!(i_out, i_in, "same triangles over the same vertex indices");
+    assert_eq!(p_out.len(), p_in.len());
+    // The input GLB is already in metres; the export scales by the rig's unit for it.
+    let scale = from_glb.metres_per_unit() as f32;
+    for (g, (a, b)) in p_out.iter().zip(&p_in).enumerate() {
+        for c in 0..3 {
+            assert!(
+                (a[c] - b[c] * scale).abs() <= 1e-6 * b[c].abs().max(1e-3),
+                "vertex {g}: {a:?} vs {b:?} x {scale}"
+            );
+        }
+    }
+}

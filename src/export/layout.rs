@@ -241,6 +241,54 @@ impl ExportLayout {
     }
 }
 
+/// An OBJ text with the vertices of a glTF face in the glTF's order: `v` = POSITION (world
+/// frame), `vt` = TEXCOORD_0 converted to OBJ's convention `(u, 1 − v)`, `vn` = NORMAL, one
+/// `f v/vt/vn` line per triangle. facebem keeps it as the layout of a glTF input
+/// ([`crate::FaceModel::obj_source`]): glTF exports get the glTF's vertex order and
+/// TEXCOORD_0 back (exactly: `1 − (1 − v)` is exact for an f32 `v` in [0, 1] in f64), and pose
+/// exports are OBJ files with the glTF's texture coordinates.
+///
+/// ```
+/// use face_prep::GltfFaceData;
+/// use glam::DVec3;
+/// let data = GltfFaceData {
+///     positions: vec![DVec3::ZERO, DVec3::X, DVec3::Y],
+///     triangles: vec![[0, 1, 2]],
+///     uvs: Some(vec![[0.0, 1.0], [1.0, 1.0], [0.0, 0.25]]),
+///     normals: None,
+/// };
+/// let text = facebem::export::layout::obj_text_of_gltf(&data);
+/// assert!(text.contains("vt 0 0.75\n"));
+/// assert!(text.ends_with("f 1/1 2/2 3/3\n"));
+/// ```
+pub fn obj_text_of_gltf(data: &face_prep::GltfFaceData) -> String {
+    use std::fmt::Write;
+    let mut out = String::new();
+    for p in &data.positions {
+        let _ = writeln!(out, "v {} {} {}", p.x, p.y, p.z);
+    }
+    for [u, v] in data.uvs.iter().flatten() {
+        let _ = writeln!(out, "vt {} {}", f64::from(*u), 1.0 - f64::from(*v));
+    }
+    for n in data.normals.iter().flatten() {
+        let n = n.unwrap_or(DVec3::ZERO);
+        let _ = writeln!(out, "vn {} {} {}", n.x, n.y, n.z);
+    }
+    for t in &data.triangles {
+        out.push('f');
+        for i in t.map(|i| i + 1) {
+            let _ = match (data.uvs.is_some(), data.normals.is_some()) {
+                (true, true) => write!(out, " {i}/{i}/{i}"),
+                (true, false) => write!(out, " {i}/{i}"),
+                (false, true) => write!(out, " {i}//{i}"),
+                (false, false) => write!(out, " {i}"),
+            };
+        }
+        out.push('\n');
+    }
+    out
+}
+
 /// One face corner: 0-based `v`, `vt`, `vn` indices.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 struct Corner {

@@ -259,12 +259,30 @@ fn scan_obj_positions(text: &str) -> Vec<DVec3> {
     out
 }
 
-fn gltf_mesh(
+/// The vertices of a glTF face mesh as the file has them (before welding): every primitive's
+/// POSITION (world frame: the node transforms applied) concatenated, the triangles indexing
+/// them, and TEXCOORD_0 and NORMAL where the file has them.
+#[derive(Clone, Debug, PartialEq)]
+pub struct GltfFaceData {
+    /// Positions, world frame, primitives concatenated in order.
+    pub positions: Vec<DVec3>,
+    /// Triangles indexing [`GltfFaceData::positions`] (strips and fans expanded; wound
+    /// counter-clockwise in the world frame).
+    pub triangles: Vec<[u32; 3]>,
+    /// TEXCOORD_0 per position (glTF convention), if any primitive has it (zeros elsewhere).
+    pub uvs: Option<Vec<[f32; 2]>>,
+    /// Unit NORMAL per position (world frame), if any primitive has it (`None` elsewhere).
+    pub normals: Option<Vec<Option<DVec3>>>,
+}
+
+/// Reads the first mesh of a glTF/GLB document (or the mesh named `mesh_name`) as the file has
+/// it, within `limits`; [`FaceMesh::from_gltf_bytes`] welds and validates the same data.
+pub fn gltf_face_data(
     bytes: &[u8],
     base: Option<&Path>,
     mesh_name: Option<&str>,
     limits: &InputLimits,
-) -> Result<FaceMesh, PrepError> {
+) -> Result<GltfFaceData, PrepError> {
     let mut doc = Document::parse(bytes, base, limits)?;
     let labels = gltf_read::mesh_labels(&doc.root);
     let mesh = match mesh_name {
@@ -281,8 +299,11 @@ fn gltf_mesh(
             })?,
     };
     let world = doc.mesh_world_transform(mesh)?.unwrap_or(DMat4::IDENTITY);
+    let normal_matrix = glam::DMat3::from_mat4(world).inverse().transpose();
     let mut positions = Vec::new();
     let mut triangles = Vec::new();
+    let mut uvs: Vec<Option<[f32; 2]>> = Vec::new();
+    let mut normals: Vec<Option<DVec3>> = Vec::new();
     for (pi, (pos, indices, mode)) in gltf_read::primitives(&doc.root, mesh)
         .into_iter()
         .enumerate()
@@ -305,6 +326,20 @@ fn gltf_mesh(
             (positions.len() + pos.len()) as u64,
             limits.max_positions,
         )?;
+        use gltf::json::mesh::Semantic;
+        let end = positions.len() + pos.len();
+        if let Some(a) = gltf_read::attribute(&doc.root, mesh, pi, Semantic::TexCoords(0)) {
+            uvs.extend(doc.read_texcoords(a)?.into_iter().map(Some));
+        }
+        uvs.resize(end, None);
+        if let Some(a) = gltf_read::attribute(&doc.root, mesh, pi, Semantic::Normals) {
+            let read = doc.read_vec3(a)?;
+            normals.extend(
+                read.into_iter()
+                    .map(|n| (normal_matrix * n).try_normalize()),
+            );
+        }
+        normals.resize(end, None);
         positions.extend(pos);
         let idx: Vec<u32> = match indices {
             Some(i) => doc.read_indices(i)?,
@@ -352,7 +387,25 @@ fn gltf_mesh(
             t.swap(1, 2);
         }
     }
-    FaceMesh::from_triangles(&positions, &triangles)
+    Ok(GltfFaceData {
+        positions,
+        triangles,
+        uvs: uvs
+            .iter()
+            .any(Option::is_some)
+            .then(|| uvs.iter().map(|t| t.unwrap_or([0.0; 2])).collect()),
+        normals: normals.iter().any(Option::is_some).then_some(normals),
+    })
+}
+
+fn gltf_mesh(
+    bytes: &[u8],
+    base: Option<&Path>,
+    mesh_name: Option<&str>,
+    limits: &InputLimits,
+) -> Result<FaceMesh, PrepError> {
+    let data = gltf_face_data(bytes, base, mesh_name, limits)?;
+    FaceMesh::from_triangles(&data.positions, &data.triangles)
 }
 
 /// Loads a face mesh, dispatching on the extension: `.obj` (tobj), `.gltf` or `.glb` (gltf,

@@ -292,6 +292,35 @@ impl Document {
             .collect())
     }
 
+    /// Reads a TEXCOORD accessor (VEC2 FLOAT, or normalized UNSIGNED_BYTE/SHORT).
+    pub(crate) fn read_texcoords(&mut self, index: usize) -> Result<Vec<[f32; 2]>, GltfError> {
+        use json::accessor::ComponentType as C;
+        let (acc, comp) = self.accessor_layout(index, self.limits.max_positions)?;
+        let normalized = self.root.accessors[index].normalized;
+        let scale = match comp {
+            C::F32 => 1.0,
+            C::U8 if normalized => 1.0 / 255.0,
+            C::U16 if normalized => 1.0 / 65535.0,
+            _ => 0.0,
+        };
+        if acc.mult != 2 || scale == 0.0 {
+            return Err(invalid(
+                "accessor",
+                index,
+                format!(
+                    "TEXCOORD must be VEC2 FLOAT or normalized UNSIGNED_BYTE/SHORT, found \
+                     {comp:?} with {} components",
+                    acc.mult
+                ),
+            ));
+        }
+        let values = self.read_components(index, &acc, comp)?;
+        Ok(values
+            .chunks_exact(2)
+            .map(|c| [(c[0] * scale) as f32, (c[1] * scale) as f32])
+            .collect())
+    }
+
     /// Reads an index accessor (SCALAR, UNSIGNED_BYTE/SHORT/INT).
     pub(crate) fn read_indices(&mut self, index: usize) -> Result<Vec<u32>, GltfError> {
         use json::accessor::ComponentType as C;
@@ -695,6 +724,19 @@ pub(crate) fn mesh_labels(root: &json::Root) -> Vec<String> {
         .enumerate()
         .map(|(i, m)| m.name.clone().unwrap_or_else(|| format!("#{i}")))
         .collect()
+}
+
+/// Accessor index of attribute `semantic` of primitive `primitive` of `mesh`, if it has one.
+pub(crate) fn attribute(
+    root: &json::Root,
+    mesh: usize,
+    primitive: usize,
+    semantic: json::mesh::Semantic,
+) -> Option<usize> {
+    let p = root.meshes.get(mesh)?.primitives.get(primitive)?;
+    p.attributes
+        .get(&Checked::Valid(semantic))
+        .map(|a| a.value())
 }
 
 /// Accessor indices of POSITION and indices, and the mode, of every primitive of `mesh`.

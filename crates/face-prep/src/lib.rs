@@ -35,7 +35,9 @@ pub mod topology;
 pub mod units;
 
 pub use error::{LoopSummary, MuscleFileError, PrepError};
-pub use face_mesh::{FaceMesh, load_face, load_face_mesh_named, load_face_with_limits};
+pub use face_mesh::{
+    FaceMesh, GltfFaceData, gltf_face_data, load_face, load_face_mesh_named, load_face_with_limits,
+};
 pub use features::{Box2, FeatureBoxes};
 pub use gltf_read::GltfError;
 pub use limits::InputLimits;
