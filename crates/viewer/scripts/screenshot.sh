@@ -6,7 +6,7 @@ set -euo pipefail
 out=${1:?usage: screenshot.sh OUT.png [viewer args...]}
 shift
 root=$(cd "$(dirname "$0")/../../.." && pwd)
-bin="$root/target/release/viewer"
+bin="${CARGO_TARGET_DIR:-$root/target}/release/viewer"
 [ -x "$bin" ] || (cd "$root" && cargo build --release -p viewer)
 work=$(mktemp -d)
 # Xvfb picks a free display and writes its number to fd 3.

@@ -24,6 +24,7 @@ use crate::renderer::{LineVertex, ReadBackError};
 use crate::source;
 
 mod box_drag;
+mod dialogs;
 mod panels;
 mod rig_editing;
 mod viewport;
@@ -119,6 +120,7 @@ pub struct ViewerApp {
     loading: Option<Job<(String, Opened)>>,
     rigging: Option<RigJob>,
     exporting: Option<Job<String>>,
+    dialog: Option<dialogs::PendingDialog>,
     export_dir: String,
     selection: Option<Selection>,
     edit_target: usize,
@@ -164,6 +166,7 @@ impl ViewerApp {
             loading: None,
             rigging: None,
             exporting: None,
+            dialog: None,
             export_dir: std::env::current_dir()
                 .map(|d| home_relative(&d))
                 .unwrap_or_else(|_| ".".to_owned()),
@@ -683,6 +686,7 @@ impl ViewerApp {
     pub fn show(&mut self, ui: &mut egui::Ui) {
         let ctx = ui.ctx().clone();
         self.poll_jobs(&ctx);
+        self.poll_dialog(&ctx);
         self.dropped_files(&ctx);
         egui::Panel::top("toolbar").show(ui, |ui| self.toolbar(ui));
         egui::Panel::bottom("status").show(ui, |ui| self.status_bar(ui));

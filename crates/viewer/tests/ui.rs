@@ -834,6 +834,18 @@ fn the_face_is_drawn_at_once_exports_wait_for_the_rig_and_the_legend_names_every
     names.sort_unstable();
     names.dedup();
     assert_eq!(names.len(), model.rig.muscles.len());
+
+    // A muscle file that cannot be read is reported (the dialog's answer goes through here).
+    let ctx = harness.ctx.clone();
+    let missing = out.path().join("missing.muscles");
+    harness.state_mut().load_muscle_file_from(&ctx, &missing);
+    let msg = harness.state().message().cloned().unwrap();
+    assert!(
+        msg.is_error && msg.text.contains("missing.muscles"),
+        "{}",
+        msg.text
+    );
+    assert!(!harness.state().is_rigging());
 }
 
 #[test]

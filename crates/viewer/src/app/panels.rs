@@ -4,6 +4,7 @@ use std::path::PathBuf;
 
 use eframe::egui;
 
+use super::dialogs::DialogPurpose;
 use super::{ExportKind, ViewerApp, muscle_label, preset_label};
 use crate::muscle_edit::insert_into_chain;
 use crate::overlay::{muscle_color, muscle_color_index, muscle_color_name};
@@ -20,6 +21,13 @@ impl ViewerApp {
             if ui.button("Open").clicked() || enter {
                 let path = PathBuf::from(self.open_path.trim());
                 self.open(ui.ctx(), path);
+            }
+            if ui
+                .add_enabled(self.dialog.is_none(), egui::Button::new("Browse…"))
+                .on_hover_text("Choose a face (.obj, .gltf, .glb) or a saved rig in a file dialog")
+                .clicked()
+            {
+                self.show_dialog(ui.ctx(), DialogPurpose::Open);
             }
             if ui.button("Open default face").clicked() {
                 self.open_default_face(ui.ctx());
@@ -103,24 +111,23 @@ impl ViewerApp {
                 (egui::Color32::from_rgb(r, g, b), name)
             })
             .collect();
-        egui::CollapsingHeader::new("Muscle colours")
-            .default_open(true)
-            .show(ui, |ui| {
-                egui::Grid::new("legend").num_columns(2).show(ui, |ui| {
-                    for (k, (color, name)) in rows.iter().enumerate() {
-                        ui.horizontal(|ui| {
-                            let (rect, _) = ui
-                                .allocate_exact_size(egui::vec2(12.0, 12.0), egui::Sense::hover());
-                            ui.painter().rect_filled(rect, 2.0, *color);
-                            ui.label(name);
-                        });
-                        if k % 2 == 1 {
-                            ui.end_row();
-                        }
-                    }
+        let frame = egui::Frame::popup(ui.style())
+            .inner_margin(6.0)
+            .multiply_with_opacity(0.8);
+        frame.show(ui, |ui| {
+            ui.spacing_mut().item_spacing = egui::vec2(4.0, 1.0);
+            ui.spacing_mut().interact_size.y = 12.0;
+            let small = |text: &str| egui::Label::new(egui::RichText::new(text).small());
+            ui.add(small("Muscle colours").selectable(false));
+            for (color, name) in &rows {
+                ui.horizontal(|ui| {
+                    let (rect, _) =
+                        ui.allocate_exact_size(egui::vec2(8.0, 8.0), egui::Sense::hover());
+                    ui.painter().rect_filled(rect, 1.5, *color);
+                    ui.add(small(name).selectable(false));
                 });
-                ui.label("Darker at a muscle's start; the arrow shows its pull.");
-            });
+            }
+        });
     }
 
     pub(super) fn view_ui(&mut self, ui: &mut egui::Ui) {
@@ -142,9 +149,7 @@ impl ViewerApp {
         if o != self.overlays {
             self.set_overlays(o);
         }
-        if self.overlays.muscles {
-            self.legend_ui(ui);
-        }
+
         ui.label("Drag: orbit · right/middle or shift-drag: pan · wheel: zoom · click: pick");
         if let Some(sel) = &self.selection {
             ui.label(format!("Selected triangle {}", sel.hit.triangle));
@@ -234,12 +239,13 @@ impl ViewerApp {
             {
                 self.rebuild_rig(ui.ctx());
             }
+            let can_load = has_source && self.model().is_some() && self.dialog.is_none();
             if ui
-                .add_enabled(has_source, egui::Button::new("Load muscle file"))
-                .on_hover_text("Reads <Export folder>/<face>.muscles and rebuilds the rig with it")
+                .add_enabled(can_load, egui::Button::new("Load muscle file…"))
+                .on_hover_text("Choose a muscle file (thesis format) and rebuild the rig with it")
                 .clicked()
             {
-                self.load_muscle_file(ui.ctx());
+                self.show_dialog(ui.ctx(), DialogPurpose::MuscleFile);
             }
         });
         self.box_edit_ui(ui);
@@ -311,6 +317,13 @@ impl ViewerApp {
             ui.add(egui::TextEdit::singleline(&mut self.export_dir).desired_width(180.0))
                 .labelled_by(label.id)
                 .on_hover_text("~ is your home folder. Existing files are never replaced: a second export is named “… (2)”.");
+            if ui
+                .add_enabled(self.dialog.is_none(), egui::Button::new("Choose…"))
+                .on_hover_text("Choose the export folder in a file dialog")
+                .clicked()
+            {
+                self.show_dialog(ui.ctx(), DialogPurpose::ExportFolder);
+            }
         });
         ui.horizontal_wrapped(|ui| {
             let ready = self.exports_ready();

@@ -159,17 +159,22 @@ impl ViewerApp {
         }
     }
 
-    pub(super) fn load_muscle_file(&mut self, ctx: &egui::Context) {
-        let Some(face) = &self.face else { return };
-        let Some(model) = &face.model else {
-            self.error("Load muscle file: the rig is not computed yet".to_owned());
-            return;
-        };
+    /// The muscle file the viewer saves and loads by default: `<Export folder>/<face>.muscles`.
+    pub fn default_muscle_file(&self) -> Option<PathBuf> {
+        let face = self.face.as_ref()?;
         let stem = Path::new(&face.name)
             .file_stem()
             .map_or_else(|| "face".to_owned(), |s| s.to_string_lossy().into_owned());
-        let path = Path::new(self.export_dir.trim()).join(format!("{stem}.muscles"));
-        match face_prep::muscle_file::load(&path, model.rig.shell.triangles.len()) {
+        Some(self.export_dir().join(format!("{stem}.muscles")))
+    }
+
+    /// Reads the muscle file `path` (thesis format) and rebuilds the rig with it.
+    pub fn load_muscle_file_from(&mut self, ctx: &egui::Context, path: &Path) {
+        let Some(model) = self.model() else {
+            self.error("Load muscle file: the rig is not computed yet".to_owned());
+            return;
+        };
+        match face_prep::muscle_file::load(path, model.rig.shell.triangles.len()) {
             Ok(muscles) => {
                 self.params.muscles = Some(muscles);
                 self.refresh_overlays();

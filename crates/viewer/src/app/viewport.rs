@@ -67,6 +67,7 @@ impl ViewerApp {
             self.uploaded_generation = self.posed.generation();
         }
         if !self.has_wgpu {
+            self.legend_in(ui, rect);
             return;
         }
         let ppp = ui.ctx().pixels_per_point();
@@ -107,6 +108,16 @@ impl ViewerApp {
             ViewportCallback { frame, size_px },
         ));
         self.frames_with_face += 1;
+        self.legend_in(ui, rect);
+    }
+
+    /// The muscle colour legend in the viewport's top-left corner (drawn over the 3D view),
+    /// while the muscle overlay is on.
+    fn legend_in(&mut self, ui: &mut egui::Ui, rect: egui::Rect) {
+        if self.overlays.muscles {
+            let mut corner = ui.new_child(egui::UiBuilder::new().max_rect(rect.shrink(8.0)));
+            self.legend_ui(&mut corner);
+        }
     }
 
     pub(super) fn pick(&mut self, ndc: Vec2, aspect: f32) {
