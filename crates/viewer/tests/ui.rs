@@ -802,6 +802,10 @@ fn the_face_is_drawn_at_once_exports_wait_for_the_rig_and_the_legend_names_every
             "{label} is enabled while the rig computes"
         );
     }
+    // One progress bar over all stages, with the elapsed time.
+    let bar = harness.get_by_role(Role::ProgressIndicator);
+    let label = bar.accesskit_node().label().unwrap_or_default();
+    assert!(label.contains("elapsed"), "{label}");
     let why = harness.state().exports_ready().unwrap_err();
     assert!(why.contains("being computed"), "{why}");
     // Clicking a disabled button does nothing; calling export directly is refused.

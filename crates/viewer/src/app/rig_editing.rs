@@ -181,7 +181,10 @@ impl ViewerApp {
                 self.info(format!("Loaded {}; rebuilding the rig", path.display()));
                 self.rebuild_rig(ctx);
             }
-            Err(e) => self.error(format!("Could not load the muscle file: {e}")),
+            Err(e) => self.error(format!(
+                "Could not load the muscle file {}: {e}",
+                path.display()
+            )),
         }
     }
 }
