@@ -81,10 +81,14 @@ impl crate::FaceModel {
     }
 
     /// `params` completed with what the model knows: metres per input unit (the rig's length
-    /// unit), the bundled source's attribution and licence, the OBJ's header comments.
+    /// unit, also named in `asset.extras.inputUnit`), the bundled source's attribution and
+    /// licence, the OBJ's header comments.
     pub fn gltf_params(&self, params: &GltfParams) -> GltfParams {
         let mut params = params.clone();
         params.metres_per_unit = self.metres_per_unit();
+        params
+            .asset_extras
+            .insert("inputUnit".into(), self.rig.unit.to_string().into());
         if let Some(known) = attribution::identify(&self.mesh) {
             params.copyright = Some(known.copyright.to_string());
             params
@@ -105,9 +109,10 @@ impl crate::FaceModel {
         params
     }
 
-    /// Metres per unit of the input positions.
+    /// Metres per unit of the input positions: the rig's length unit
+    /// ([`face_prep::FaceRig::unit`], given with `--units` or detected from the eye distance).
     pub fn metres_per_unit(&self) -> f64 {
-        1.0
+        self.rig.unit.metres()
     }
 
     /// glTF bytes of this face (see [`FaceModel::write_gltf`]).
