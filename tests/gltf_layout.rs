@@ -67,15 +67,21 @@ fn textured_default_face() -> String {
     out
 }
 
+/// The rigged model of the file `path` (OBJ or glTF), with its layout.
+fn rigged(path: &std::path::Path) -> facebem::FaceModel {
+    let (mesh, obj_source) = facebem::open::read_face(path).unwrap();
+    let mut model = build_face_model(&mesh, &PipelineParams::default(), &Control::new()).unwrap();
+    model.obj_source = obj_source;
+    model
+}
+
 #[test]
 fn glb_keeps_v_line_order_texcoords_and_normals_of_the_obj() {
     let text = textured_default_face();
     let dir = tempfile::tempdir().unwrap();
     let obj = dir.path().join("textured.obj");
     std::fs::write(&obj, &text).unwrap();
-    let (mesh, obj_source) = facebem::open::read_face(&obj).unwrap();
-    let mut model = build_face_model(&mesh, &PipelineParams::default(), &Control::new()).unwrap();
-    model.obj_source = obj_source;
+    let model = rigged(&obj);
     let glb = dir.path().join("textured.glb");
     model.write_gltf(&glb, &GltfParams::default()).unwrap();
     support::assert_valid(&glb);
@@ -157,20 +163,14 @@ fn glb_keeps_v_line_order_texcoords_and_normals_of_the_obj() {
 #[test]
 fn glb_input_keeps_its_vertex_order_and_texcoords() {
     // A GLB with UVs and a seam: the textured OBJ's export, read back as the input.
-    let text = textured_default_face();
     let dir = tempfile::tempdir().unwrap();
     let obj = dir.path().join("textured.obj");
-    std::fs::write(&obj, &text).unwrap();
-    let (mesh, obj_source) = facebem::open::read_face(&obj).unwrap();
-    let mut model = build_face_model(&mesh, &PipelineParams::default(), &Control::new()).unwrap();
-    model.obj_source = obj_source;
+    std::fs::write(&obj, textured_default_face()).unwrap();
     let input = dir.path().join("input.glb");
-    model.write_gltf(&input, &GltfParams::default()).unwrap();
-
-    let (gmesh, layout) = facebem::open::read_face(&input).unwrap();
-    let mut from_glb =
-        build_face_model(&gmesh, &PipelineParams::default(), &Control::new()).unwrap();
-    from_glb.obj_source = layout;
+    rigged(&obj)
+        .write_gltf(&input, &GltfParams::default())
+        .unwrap();
+    let from_glb = rigged(&input);
     let output = dir.path().join("output.glb");
     from_glb
         .write_gltf(&output, &GltfParams::default())
