@@ -77,6 +77,13 @@ pub struct PrecomputeReport {
     /// 1-norm, [`bem_core::DenseLu::condition_estimate`]); solves above
     /// [`bem_core::DEFAULT_MAX_CONDITION`] are refused.
     pub condition_estimate: f64,
+    /// Off-diagonal BEM blocks whose quadrature could not reach the requested accuracy
+    /// ([`bem_core::AssemblyReport`]): a collocation point closer to another element than
+    /// 1e-4 of its size, i.e. the shell nearly touches or crosses itself there. 0 on the bundled
+    /// faces at default settings.
+    pub quadrature_unconverged: usize,
+    /// Largest estimated relative error among those blocks (0 when there is none).
+    pub quadrature_worst_error: f64,
     /// Seconds spent in prep (simplification, rig).
     pub prep_seconds: f64,
     /// Seconds spent in the BEM solve (assembly, factorisation, solves).
@@ -91,8 +98,8 @@ pub const SUSPICIOUS_AMPLIFICATION: f64 = 5.0;
 
 impl PrecomputeReport {
     /// Human-readable warnings about the computed rig (empty when nothing is suspicious): shell
-    /// self-intersections and near-singular responses. The CLI, the viewer and
-    /// [`crate::describe`] show them.
+    /// self-intersections, near-singular responses and unconverged BEM quadrature. The CLI, the
+    /// viewer and [`crate::describe`] show them.
     ///
     /// ```
     /// let mut report = facebem::PrecomputeReport::default();
@@ -102,6 +109,9 @@ impl PrecomputeReport {
     /// let w = report.warnings();
     /// assert!(w[0].contains("3 pairs of shell elements intersect"));
     /// assert!(w[1].contains("40 times"));
+    /// report.quadrature_unconverged = 12;
+    /// report.quadrature_worst_error = 0.03;
+    /// assert!(report.warnings()[2].contains("12 BEM element pairs"));
     /// ```
     pub fn warnings(&self) -> Vec<String> {
         let mut out = Vec::new();
@@ -119,6 +129,14 @@ impl PrecomputeReport {
                  near-singular, e.g. front and back of the shell nearly touch (check the \
                  shell offset)",
                 self.response_amplification
+            ));
+        }
+        if self.quadrature_unconverged > 0 {
+            out.push(format!(
+                "{} BEM element pairs are closer than the quadrature resolves (estimated block \
+                 error up to {:.1e}): the shell nearly touches itself there (check the shell \
+                 offset); responses near them are less accurate",
+                self.quadrature_unconverged, self.quadrature_worst_error
             ));
         }
         out
@@ -394,6 +412,12 @@ pub fn build_face_model(
         shell_self_intersections,
         response_amplification,
         condition_estimate: solved.report.condition_estimate,
+        quadrature_unconverged: solved.report.quadrature.unconverged_blocks,
+        quadrature_worst_error: solved
+            .report
+            .quadrature
+            .worst
+            .map_or(0.0, |w| w.estimated_error),
         prep_seconds,
         solve_seconds,
         transfer_seconds: t2.elapsed().as_secs_f64(),

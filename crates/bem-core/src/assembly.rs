@@ -51,6 +51,8 @@ pub struct LinearSystem {
     pub gauge_fixed: bool,
     /// Largest accepted condition estimate of K ([`SolveParams::max_condition`]).
     pub max_condition: f64,
+    /// Quadrature accuracy of the assembly.
+    pub quadrature: AssemblyReport,
 }
 
 /// Number of contiguous column ranges whose row sums are accumulated separately during assembly
@@ -63,6 +65,7 @@ struct Partial {
     row_sums: Vec<Block>,
     rhs: Option<Vec<f64>>,
     rhs_len: usize,
+    quadrature: AssemblyReport,
 }
 
 impl Partial {
@@ -71,6 +74,52 @@ impl Partial {
             row_sums: vec![[[0.0; 3]; 3]; n],
             rhs: None,
             rhs_len: dof * rhs_count,
+            quadrature: AssemblyReport::default(),
+        }
+    }
+}
+
+/// An element pair whose off-diagonal block did not reach the requested accuracy.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct UnconvergedBlock {
+    /// Element whose collocation node is the load point (block row).
+    pub row_element: usize,
+    /// Element integrated over (block column).
+    pub column_element: usize,
+    /// Estimated relative error of the block.
+    pub estimated_error: f64,
+}
+
+/// Quadrature accuracy of an assembly: blocks whose estimated relative error exceeds
+/// [`QuadratureParams::tolerance`] (the collocation point closer to the element than the
+/// subdivision's depth limit resolves, e.g. surfaces that nearly touch or cross).
+#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize, serde::Deserialize)]
+pub struct AssemblyReport {
+    /// Number of unconverged off-diagonal blocks.
+    pub unconverged_blocks: usize,
+    /// The one with the largest estimated error (first in column-then-row order on ties).
+    pub worst: Option<UnconvergedBlock>,
+}
+
+impl AssemblyReport {
+    fn note(&mut self, block: UnconvergedBlock) {
+        self.unconverged_blocks += 1;
+        if self
+            .worst
+            .is_none_or(|w| block.estimated_error > w.estimated_error)
+        {
+            self.worst = Some(block);
+        }
+    }
+
+    fn merge(&mut self, other: &AssemblyReport) {
+        self.unconverged_blocks += other.unconverged_blocks;
+        if let Some(b) = other.worst
+            && self
+                .worst
+                .is_none_or(|w| b.estimated_error > w.estimated_error)
+        {
+            self.worst = Some(b);
         }
     }
 }
@@ -213,6 +262,7 @@ impl LinearSystem {
         let chunk_cols = 3 * width;
         let chunks = size.div_ceil(chunk_cols);
         let mut row_sums: Vec<Block> = vec![[[0.0; 3]; 3]; n];
+        let mut quadrature = AssemblyReport::default();
         let mut rhs = try_zeros(size, rhs_count)?;
         let mut first = 0;
         while first < chunks {
@@ -274,6 +324,7 @@ impl LinearSystem {
                 .collect::<Result<_, _>>()?;
             // add this wave's partials in range order (the same order whatever the wave size)
             for p in partials.into_iter().flatten() {
+                quadrature.merge(&p.quadrature);
                 for (t, s) in row_sums.iter_mut().zip(&p.row_sums) {
                     for a in 0..3 {
                         for b in 0..3 {
@@ -325,6 +376,7 @@ impl LinearSystem {
             loads: loads.clone(),
             gauge_fixed,
             max_condition: params.max_condition,
+            quadrature,
         })
     }
 }
@@ -385,15 +437,23 @@ fn assemble_column(
     let need_u = is_prescribed || !values.is_empty();
     let n = quads.len();
     let rhs_len = partial.rhs_len;
-    let (row_sums, mut rhs) = (
+    let (row_sums, report, mut rhs) = (
         &mut partial.row_sums,
+        &mut partial.quadrature,
         (!values.is_empty()).then(|| partial.rhs.get_or_insert_with(|| vec![0.0; rhs_len])),
     );
     for (i, &p) in centroids.iter().enumerate().take(n) {
         if i == j {
             continue;
         }
-        let m = q.moments(p, qp, need_u);
+        let (m, estimated_error) = q.moments(p, qp, need_u);
+        if estimated_error > qp.tolerance {
+            report.note(UnconvergedBlock {
+                row_element: i,
+                column_element: j,
+                estimated_error,
+            });
+        }
         let h = consts.t_block(&m, q.normal);
         let rs = &mut row_sums[i];
         for a in 0..3 {
@@ -493,7 +553,14 @@ pub fn assemble_h_g(
                 ([[0.0; 3]; 3], gb)
             } else {
                 let mut points = Vec::new();
-                collect_points(p, mesh.corners(j), mesh.area(j), params, 0, &mut points);
+                collect_points(
+                    p,
+                    mesh.corners(j),
+                    mesh.area(j),
+                    mesh.longest_edge(j),
+                    params,
+                    &mut points,
+                );
                 let nj = mesh.normal(j);
                 let mut hb = [[0.0; 3]; 3];
                 let mut gb = [[0.0; 3]; 3];
@@ -526,33 +593,44 @@ pub fn assemble_h_g(
     Ok((h, g))
 }
 
-/// Quadrature points of the adaptive rule (same criterion as the assembly) as a list.
+/// Quadrature points of the adaptive rule (same subdivision as the assembly) as a list.
 fn collect_points(
     p: DVec3,
     c: [DVec3; 3],
     area: f64,
+    longest: f64,
     params: &QuadratureParams,
-    depth: u32,
     out: &mut Vec<(DVec3, f64)>,
 ) {
-    let centroid = (c[0] + c[1] + c[2]) / 3.0;
-    let longest = (c[1] - c[0])
-        .length()
-        .max((c[2] - c[1]).length())
-        .max((c[0] - c[2]).length());
-    if depth < params.max_depth && (p - centroid).length() < params.near_factor * longest {
-        let m01 = 0.5 * (c[0] + c[1]);
-        let m12 = 0.5 * (c[1] + c[2]);
-        let m20 = 0.5 * (c[2] + c[0]);
-        for sub in [
-            [c[0], m01, m20],
-            [m01, c[1], m12],
-            [m20, m12, c[2]],
-            [m01, m12, m20],
-        ] {
-            collect_points(p, sub, 0.25 * area, params, depth + 1, out);
-        }
+    use crate::quadrature::{point_triangle_distance, seven_points, visit_leaves};
+    let limit = if params.max_depth == 0 {
+        0
     } else {
-        out.extend(crate::quadrature::seven_points(c, area));
-    }
+        params.depth_limit(longest, point_triangle_distance(p, c))
+    };
+    visit_leaves(
+        p,
+        c,
+        area,
+        params.near_factor,
+        0,
+        limit,
+        &mut |c, area, at_limit| {
+            if at_limit && limit > 0 {
+                let m01 = 0.5 * (c[0] + c[1]);
+                let m12 = 0.5 * (c[1] + c[2]);
+                let m20 = 0.5 * (c[2] + c[0]);
+                for sub in [
+                    [c[0], m01, m20],
+                    [m01, c[1], m12],
+                    [m20, m12, c[2]],
+                    [m01, m12, m20],
+                ] {
+                    out.extend(seven_points(sub, 0.25 * area));
+                }
+            } else {
+                out.extend(seven_points(c, area));
+            }
+        },
+    );
 }

@@ -69,11 +69,67 @@ pub(crate) struct Moments {
 }
 
 impl Moments {
-    /// Adds one quadrature point `q` with weight `w` (area included) for load point `p`.
+    /// All components in one array (t0, t2, t1, u0, u2).
+    fn to_array(self) -> [f64; 17] {
+        let mut a = [0.0; 17];
+        a[0] = self.t0;
+        a[1..7].copy_from_slice(&self.t2);
+        a[7..10].copy_from_slice(&self.t1);
+        a[10] = self.u0;
+        a[11..17].copy_from_slice(&self.u2);
+        a
+    }
+
+    fn from_array(a: [f64; 17]) -> Self {
+        let mut m = Self {
+            t0: a[0],
+            u0: a[10],
+            ..Self::default()
+        };
+        m.t2.copy_from_slice(&a[1..7]);
+        m.t1.copy_from_slice(&a[7..10]);
+        m.u2.copy_from_slice(&a[11..17]);
+        m
+    }
+
+    /// Adds another set of moments component-wise.
+    pub fn add_moments(&mut self, other: &Moments) {
+        let (a, b) = (self.to_array(), other.to_array());
+        *self = Self::from_array(std::array::from_fn(|k| a[k] + b[k]));
+    }
+
+    /// Adds `|a − b|` component-wise (an error estimate).
+    pub fn add_abs_diff(&mut self, a: &Moments, b: &Moments) {
+        let (s, a, b) = (self.to_array(), a.to_array(), b.to_array());
+        *self = Self::from_array(std::array::from_fn(|k| s[k] + (a[k] - b[k]).abs()));
+    }
+
+    /// `self` as an error estimate relative to `total`: the larger of the traction-kernel and
+    /// (with `need_u`) displacement-kernel groups' 1-norm ratios.
+    pub fn relative_to(&self, total: &Moments, need_u: bool) -> f64 {
+        let (e, t) = (self.to_array(), total.to_array());
+        let ratio = |r: std::ops::Range<usize>| {
+            let num: f64 = e[r.clone()].iter().map(|v| v.abs()).sum();
+            let den: f64 = t[r].iter().map(|v| v.abs()).sum();
+            if num == 0.0 { 0.0 } else { num / den }
+        };
+        let t_part = ratio(0..10);
+        if need_u {
+            t_part.max(ratio(10..17))
+        } else {
+            t_part
+        }
+    }
+
+    /// Adds one quadrature point `q` with weight `w` (area included) for load point `p`
+    /// (skipped if it coincides with `p`, which only a self-intersecting surface produces).
     #[inline(always)]
     pub fn add(&mut self, p: DVec3, q: DVec3, w: f64, n: DVec3, need_u: bool) {
         let r = q - p;
         let r2 = r.length_squared();
+        if r2 == 0.0 {
+            return;
+        }
         let inv_r = 1.0 / r2.sqrt();
         let rh = r * inv_r;
         let w_r2 = w * inv_r * inv_r;

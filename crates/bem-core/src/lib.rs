@@ -5,8 +5,9 @@
 //! unknowns; each element has either its displacement or its traction prescribed
 //! ([`BoundaryCondition`]). The boundary integral equation `H u = G t` uses the Kelvin kernels
 //! ([`kernels`]), a 7-point triangle rule refined by adaptive 1→4 subdivision for near pairs
-//! ([`QuadratureParams`]), the analytic singular G block ([`singular`]) and the rigid-body row sum
-//! for the diagonal H blocks. The mixed system `K x = y` is assembled directly, column block by
+//! down to a depth derived from each pair's gap and the tolerance, reporting the blocks that
+//! could not reach it ([`QuadratureParams`], [`AssemblyReport`]), the analytic singular G
+//! block ([`singular`]) and the rigid-body row sum for the diagonal H blocks. The mixed system `K x = y` is assembled directly, column block by
 //! column block in parallel ([`LinearSystem::assemble`]), and solved with a blocked dense LU with
 //! partial pivoting built on faer's kernels ([`DenseLu`]) for many right-hand sides at once.
 //! Both stages report progress and can be cancelled ([`Control`]). [`ResponseBasis`]
@@ -63,7 +64,7 @@ pub mod singular;
 mod solve;
 mod vertex;
 
-pub use assembly::{LinearSystem, RigidModes, assemble_h_g};
+pub use assembly::{AssemblyReport, LinearSystem, RigidModes, UnconvergedBlock, assemble_h_g};
 pub use bc::{BoundaryCondition, Loads};
 pub use budget::MemoryEstimate;
 pub use control::{Control, Progress, Stage};

@@ -54,6 +54,8 @@ pub struct SolveReport {
     /// Hager–Higham estimate of the 1-norm condition number of K with unit-1-norm columns
     /// ([`crate::DenseLu::condition_estimate`]).
     pub condition_estimate: f64,
+    /// Quadrature accuracy of the assembly (unconverged blocks).
+    pub quadrature: crate::AssemblyReport,
 }
 
 /// Displacement and traction on every element (at its centroid) for one load case.
@@ -85,6 +87,7 @@ impl LinearSystem {
             prescribed,
             loads,
             max_condition,
+            quadrature,
             ..
         } = self;
         control.check()?;
@@ -131,7 +134,13 @@ impl LinearSystem {
                 }
             })
             .collect();
-        Ok((solutions, SolveReport { condition_estimate }))
+        Ok((
+            solutions,
+            SolveReport {
+                condition_estimate,
+                quadrature,
+            },
+        ))
     }
 }
 

@@ -137,6 +137,7 @@ fn reference() -> QuadratureParams {
     QuadratureParams {
         near_factor: 8.0,
         max_depth: 12,
+        ..QuadratureParams::default()
     }
 }
 
@@ -151,6 +152,7 @@ fn check_neighbours(mesh: &SurfaceMesh, m: &Material, shared: usize, i: usize) -
     let plain = QuadratureParams {
         near_factor: 2.0,
         max_depth: 0,
+        ..QuadratureParams::default()
     };
     let mut worst_plain = 0.0f64;
     let mut count = 0;
