@@ -46,6 +46,10 @@ fn main() -> anyhow::Result<()> {
             t0.elapsed().as_secs_f64(),
             model.rig.unit_choice().describe()
         );
+        println!(
+            "response amplification {:.2}, shell self-intersections {}",
+            model.report.response_amplification, model.report.shell_self_intersections
+        );
         report(&model)?;
         if face.ends_with("ict_narrow_face_4loop.obj") {
             calibration(&model, &root.join("tests/data/calibration"))?;
@@ -158,7 +162,22 @@ fn row(model: &FaceModel, lm: &FaceLandmarks, label: &str, field: &[DVec3], n_tr
         .zip(field)
         .map(|(a, b)| *a + *b)
         .collect();
-    let flips = flipped_triangles(&model.mesh.vertices, &posed, &model.mesh.triangles).len();
+    let flipped = flipped_triangles(&model.mesh.vertices, &posed, &model.mesh.triangles);
+    let flips = flipped.len();
+    if std::env::var_os("FLIPS").is_some() {
+        for &t in flipped.iter().take(6) {
+            let c = model.mesh.triangles[t as usize]
+                .iter()
+                .map(|&v| {
+                    lm.canonical_from_input
+                        .transform_point3(model.mesh.vertices[v as usize])
+                        * lm.mm_per_unit
+                })
+                .sum::<DVec3>()
+                / 3.0;
+            println!("    flipped triangle {t} at {c:.1?}");
+        }
+    }
     println!(
         "{label:<30} {:>7.2} ({:>6.1},{:>6.1},{:>6.1}) {:>7.2} {:>6.1}° {:>5.2}/{:>5.1}° {:>8.3} {:>6}  browL up {:.2}",
         max * lm.mm_per_unit,

@@ -375,7 +375,13 @@ pub fn build_face_model(
             if rig.params.muscle_model == face_prep::muscle_model::MuscleModel::Anatomical {
                 transfer.snap_to_margins(&mesh.vertices, &s, &peeled_vertices);
             }
-            let fields = on_copy.iter().map(|f| transfer.apply(&s, f)).collect();
+            let mut fields: Vec<Vec<DVec3>> =
+                on_copy.iter().map(|f| transfer.apply(&s, f)).collect();
+            if rig.params.muscle_model == face_prep::muscle_model::MuscleModel::Anatomical {
+                for f in &mut fields {
+                    crate::rolled_in::hang_from_margins(f, &mesh.triangles, &peeled_vertices);
+                }
+            }
             (fields, Some(SimplifiedFace { mesh: s, transfer }))
         }
     };

@@ -148,6 +148,15 @@ struct SolverArgs {
     /// distance between the eyes, adult mean 63 mm; `info` says what was chosen).
     #[arg(long, default_value = "auto", value_parser = parse_units)]
     units: face_prep::units::Units,
+    /// Muscle model: `anatomical` (origin on bone, insertion in skin, shortening as a strain,
+    /// in mm) or `thesis` (the 2002 thesis's chain rule, reproduced exactly).
+    #[arg(long, default_value = "anatomical", value_parser = parse_muscle_model)]
+    muscle_model: face_prep::muscle_model::MuscleModel,
+}
+
+fn parse_muscle_model(s: &str) -> Result<face_prep::muscle_model::MuscleModel, String> {
+    face_prep::muscle_model::MuscleModel::parse(s)
+        .ok_or_else(|| format!("unknown muscle model {s:?}: use anatomical or thesis"))
 }
 
 fn parse_units(s: &str) -> Result<face_prep::units::Units, String> {
@@ -291,6 +300,7 @@ fn rig(face: &Path, output: &Path, muscles: Option<&Path>, solver: &SolverArgs) 
             offset: solver.offset,
             thickness: solver.thickness,
             units: solver.units,
+            muscle_model: solver.muscle_model,
             ..RigParams::default()
         },
         poisson: solver.poisson,

@@ -50,15 +50,15 @@ pub const CUSTOM_MAX_STRAIN: f64 = 0.2;
 ///
 /// ```
 /// use face_prep::muscle_model::MuscleModel;
-/// assert_eq!(MuscleModel::default(), MuscleModel::Thesis);
+/// assert_eq!(MuscleModel::default(), MuscleModel::Anatomical);
 /// assert_eq!(MuscleModel::parse("thesis"), Some(MuscleModel::Thesis));
 /// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
 pub enum MuscleModel {
     /// The thesis's chains, each element moved by one element spacing (reproducible).
-    #[default]
     Thesis,
     /// Origin on bone, insertion in skin, shortening as a strain, in physical units.
+    #[default]
     Anatomical,
 }
 
@@ -271,6 +271,7 @@ pub fn muscle_attachment(
         insertion: shell.centroid(first as usize).truncate(),
         half_width_mm: CUSTOM_HALF_WIDTH_MM,
         max_strain: CUSTOM_MAX_STRAIN,
+        spread_mm: 0.0,
     })
 }
 
@@ -285,6 +286,7 @@ pub fn place_band(
     params: &AnatomicalParams,
 ) -> (Vec<u32>, Vec<u32>) {
     let half_width = att.half_width_mm / mm_per_unit;
+    let t_max = 1.0 + spread_fraction(att, mm_per_unit);
     let mut front = Vec::new();
     let mut back = Vec::new();
     for e in 0..shell.element_count() {
@@ -299,7 +301,7 @@ pub fn place_band(
             continue;
         }
         let (t, d) = project_on_segment(att.origin, att.insertion, shell.centroid(e).truncate());
-        if (0.0..=1.0).contains(&t) && d <= params.core_fraction * half_width {
+        if (0.0..=t_max).contains(&t) && d <= params.core_fraction * half_width {
             match tag {
                 ElementTag::Front => front.push((t, e as u32)),
                 _ => back.push((t, e as u32)),
@@ -356,6 +358,12 @@ pub fn anatomical_pattern(
             (e, -toward_origin * (strain * s * w))
         })
         .collect()
+}
+
+/// [`Attachment::spread_mm`] as a fraction of the muscle's in-plane length.
+fn spread_fraction(att: &Attachment, mm_per_unit: f64) -> f64 {
+    let len = att.origin.distance(att.insertion) * mm_per_unit;
+    if len > 0.0 { att.spread_mm / len } else { 0.0 }
 }
 
 /// Unit normal of a shell element (zero for a degenerate one).

@@ -72,7 +72,7 @@ impl Default for RigParams {
             repair_rounds: 8,
             front_repair_rounds: 30,
             units: Units::Auto,
-            muscle_model: MuscleModel::Thesis,
+            muscle_model: MuscleModel::Anatomical,
             anatomical: AnatomicalParams::default(),
         }
     }

@@ -30,9 +30,19 @@ fn expected_input_intersections(name: &str) -> usize {
     }
 }
 
+/// Default rig parameters with the thesis muscle model: these tests pin the thesis's chains
+/// (scale-free, so a similarity transform keeps them); the anatomical model is tested in the
+/// root crate's `tests/anatomical_muscles.rs`.
+fn thesis() -> RigParams {
+    RigParams {
+        muscle_model: face_prep::muscle_model::MuscleModel::Thesis,
+        ..RigParams::default()
+    }
+}
+
 fn rig_of(name: &str) -> (FaceMesh, FaceRig) {
     let face = load_face(&asset(name)).unwrap();
-    let rig = FaceRig::build(&face, &RigParams::default()).unwrap();
+    let rig = FaceRig::build(&face, &thesis()).unwrap();
     (face, rig)
 }
 
@@ -309,7 +319,7 @@ fn randomly_rotated_faces_give_the_same_features_and_muscles() {
             &face.triangles,
         )
         .unwrap();
-        let r2 = FaceRig::build(&moved, &RigParams::default()).unwrap();
+        let r2 = FaceRig::build(&moved, &thesis()).unwrap();
         assert_eq!(rig.loops, r2.loops, "{name}: loop classification differs");
         let tol = 1e-9 * rig.face_size;
         let b1 = [
@@ -402,7 +412,7 @@ fn mediapipe_left_and_right_muscles_mirror_each_other() {
 fn prep_time_figure_for_the_largest_face() {
     let face = load_face(&asset("ict_narrow_face_4loop.obj")).unwrap();
     let t0 = std::time::Instant::now();
-    let rig = FaceRig::build(&face, &RigParams::default()).unwrap();
+    let rig = FaceRig::build(&face, &thesis()).unwrap();
     // Figure only (no timing assertion): printed for the notes.
     eprintln!(
         "FIGURE prep time ict_narrow_face_4loop (13120 triangles, {} shell elements): {:.3} s",
