@@ -105,6 +105,65 @@ fn restore_bow_ties(triangles: &[[u32; 3]], kept: &mut [bool], vertex_count: usi
     }
 }
 
+/// Jacobi sweeps of [`hang_from_margins`].
+pub const HANG_ITERATIONS: usize = 200;
+
+/// Displacements of peeled (rolled-in) vertices as the harmonic extension of the simulated
+/// surface's displacements over the peeled flaps: each peeled vertex ends at the mean of its
+/// neighbours, the simulated vertices held ([`HANG_ITERATIONS`] Jacobi sweeps, starting from the
+/// field as given, e.g. the closest margin point's). A flap thus hangs smoothly from its
+/// margin; taking each vertex's closest margin point alone folded the triangles of the mouth
+/// corners, where the upper and lower lip margins meet and move differently.
+///
+/// ```
+/// use glam::DVec3;
+/// // A strip 0-1-2-3: the middle vertices 1, 2 are peeled, the ends move by 0 and 3.
+/// let tris = [[0, 1, 4], [1, 2, 4], [2, 3, 4]];
+/// let mut field = vec![DVec3::ZERO, DVec3::ZERO, DVec3::ZERO, DVec3::X * 3.0, DVec3::X];
+/// facebem::rolled_in::hang_from_margins(&mut field, &tris, &[1, 2]);
+/// assert!(field[1].x > 0.0 && field[1].x < field[2].x && field[2].x < 3.0);
+/// ```
+pub fn hang_from_margins(field: &mut [DVec3], triangles: &[[u32; 3]], peeled: &[u32]) {
+    if peeled.is_empty() {
+        return;
+    }
+    let n = field.len();
+    let mut is_peeled = vec![false; n];
+    for &v in peeled {
+        if let Some(p) = is_peeled.get_mut(v as usize) {
+            *p = true;
+        }
+    }
+    let mut neighbours: Vec<Vec<u32>> = vec![Vec::new(); n];
+    for t in triangles {
+        for k in 0..3 {
+            let (a, b) = (t[k] as usize, t[(k + 1) % 3] as usize);
+            if a < n && b < n {
+                if is_peeled[a] {
+                    neighbours[a].push(b as u32);
+                }
+                if is_peeled[b] {
+                    neighbours[b].push(a as u32);
+                }
+            }
+        }
+    }
+    for _ in 0..HANG_ITERATIONS {
+        let next: Vec<(u32, DVec3)> = peeled
+            .iter()
+            .filter(|&&v| (v as usize) < n && !neighbours[v as usize].is_empty())
+            .map(|&v| {
+                let nb = &neighbours[v as usize];
+                let sum: DVec3 = nb.iter().map(|&u| field[u as usize]).sum();
+                (v, sum / nb.len() as f64)
+            })
+            .collect();
+        for (v, d) in next {
+            field[v as usize] = d;
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -184,64 +243,5 @@ mod tests {
             peel_rolled_in(&Simplified::whole(&vertices, &triangles)),
             None
         );
-    }
-}
-
-/// Jacobi sweeps of [`hang_from_margins`].
-pub const HANG_ITERATIONS: usize = 200;
-
-/// Displacements of peeled (rolled-in) vertices as the harmonic extension of the simulated
-/// surface's displacements over the peeled flaps: each peeled vertex ends at the mean of its
-/// neighbours, the simulated vertices held ([`HANG_ITERATIONS`] Jacobi sweeps, starting from the
-/// field as given, e.g. the closest margin point's). A flap thus hangs smoothly from its
-/// margin; taking each vertex's closest margin point alone folded the triangles of the mouth
-/// corners, where the upper and lower lip margins meet and move differently.
-///
-/// ```
-/// use glam::DVec3;
-/// // A strip 0-1-2-3: the middle vertices 1, 2 are peeled, the ends move by 0 and 3.
-/// let tris = [[0, 1, 4], [1, 2, 4], [2, 3, 4]];
-/// let mut field = vec![DVec3::ZERO, DVec3::ZERO, DVec3::ZERO, DVec3::X * 3.0, DVec3::X];
-/// facebem::rolled_in::hang_from_margins(&mut field, &tris, &[1, 2]);
-/// assert!(field[1].x > 0.0 && field[1].x < field[2].x && field[2].x < 3.0);
-/// ```
-pub fn hang_from_margins(field: &mut [DVec3], triangles: &[[u32; 3]], peeled: &[u32]) {
-    if peeled.is_empty() {
-        return;
-    }
-    let n = field.len();
-    let mut is_peeled = vec![false; n];
-    for &v in peeled {
-        if let Some(p) = is_peeled.get_mut(v as usize) {
-            *p = true;
-        }
-    }
-    let mut neighbours: Vec<Vec<u32>> = vec![Vec::new(); n];
-    for t in triangles {
-        for k in 0..3 {
-            let (a, b) = (t[k] as usize, t[(k + 1) % 3] as usize);
-            if a < n && b < n {
-                if is_peeled[a] {
-                    neighbours[a].push(b as u32);
-                }
-                if is_peeled[b] {
-                    neighbours[b].push(a as u32);
-                }
-            }
-        }
-    }
-    for _ in 0..HANG_ITERATIONS {
-        let next: Vec<(u32, DVec3)> = peeled
-            .iter()
-            .filter(|&&v| (v as usize) < n && !neighbours[v as usize].is_empty())
-            .map(|&v| {
-                let nb = &neighbours[v as usize];
-                let sum: DVec3 = nb.iter().map(|&u| field[u as usize]).sum();
-                (v, sum / nb.len() as f64)
-            })
-            .collect();
-        for (v, d) in next {
-            field[v as usize] = d;
-        }
     }
 }

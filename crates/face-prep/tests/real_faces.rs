@@ -619,7 +619,7 @@ fn front_repair_is_a_no_op_on_faces_without_defects() {
         }
         let params = RigParams {
             front_repair_rounds: 0,
-            ..RigParams::default()
+            ..thesis()
         };
         let off = FaceRig::build(&face, &params).unwrap();
         assert_eq!(off.shell, rig.shell, "{name}");
@@ -638,7 +638,7 @@ fn without_front_repair_the_ict_shells_intersect_themselves() {
         let face = load_face(&asset(name)).unwrap();
         let params = RigParams {
             front_repair_rounds: 0,
-            ..RigParams::default()
+            ..thesis()
         };
         let rig = FaceRig::build(&face, &params).unwrap();
         let hits = rig.shell.self_intersections();
