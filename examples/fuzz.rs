@@ -2,8 +2,14 @@
 //!
 //! ```text
 //! cargo run --release --example fuzz -- --minutes 30 --target obj|gltf|rig|muscles \
-//!     [--out DIR] [--seed N] [--case-seconds 5] [--case-mb 500]
+//!     [--out DIR] [--seed N] [--case-seconds 5] [--hang-seconds 60] [--case-mb 500]
 //! ```
+//!
+//! Time is CPU time on Linux (from `/proc`): `--minutes` is the workers' CPU time, and a case
+//! is slow when it uses more than `--case-seconds` of CPU, so a loaded machine does not turn
+//! starvation into findings; a case that blocks without using CPU (a FIFO, a lock) is caught
+//! by the wall-clock `--hang-seconds`. Workers run with `RAYON_NUM_THREADS=1` unless it is set,
+//! i.e. on one core. Elsewhere both fall back to wall-clock time.
 //!
 //! A supervisor process runs worker processes (this binary with `--worker`) until the time is
 //! up. A worker mutates the bundled MediaPipe face as the target kind (OBJ text lines and
@@ -96,6 +102,7 @@ struct Opts {
     out: PathBuf,
     seed: u64,
     case_seconds: f64,
+    hang_seconds: f64,
     case_mb: usize,
     worker: bool,
 }
@@ -107,6 +114,7 @@ fn parse_opts() -> Result<Opts, String> {
         out: PathBuf::new(),
         seed: 1,
         case_seconds: 5.0,
+        hang_seconds: 60.0,
         case_mb: 500,
         worker: false,
     };
@@ -119,6 +127,7 @@ fn parse_opts() -> Result<Opts, String> {
             "--out" => o.out = PathBuf::from(val()?),
             "--seed" => o.seed = val()?.parse().map_err(|e| format!("--seed: {e}"))?,
             "--case-seconds" => o.case_seconds = val()?.parse().map_err(|e| format!("{e}"))?,
+            "--hang-seconds" => o.hang_seconds = val()?.parse().map_err(|e| format!("{e}"))?,
             "--case-mb" => o.case_mb = val()?.parse().map_err(|e| format!("{e}"))?,
             "--worker" => o.worker = true,
             other => return Err(format!("unknown argument {other}")),
@@ -131,6 +140,46 @@ fn parse_opts() -> Result<Opts, String> {
         o.out = std::env::temp_dir().join(format!("facebem-fuzz-{}", o.target));
     }
     Ok(o)
+}
+
+/// CPU seconds of this process (`self_` true: its own threads) or of its waited-for children
+/// (`self_` false), from `/proc/self/stat` (clock ticks of 1/100 s, Linux's USER_HZ).
+fn cpu_seconds(self_: bool) -> Option<f64> {
+    let stat = std::fs::read_to_string("/proc/self/stat").ok()?;
+    // Fields after the command name "(…)": state is field 3, utime 14, stime 15, cutime 16,
+    // cstime 17 (proc(5)).
+    let rest = &stat[stat.rfind(')')? + 2..];
+    let f: Vec<&str> = rest.split(' ').collect();
+    let (a, b) = if self_ { (11, 12) } else { (13, 14) };
+    let ticks = f.get(a)?.parse::<f64>().ok()? + f.get(b)?.parse::<f64>().ok()?;
+    Some(ticks / 100.0)
+}
+
+/// A clock of CPU seconds ([`cpu_seconds`]), or of wall-clock seconds where `/proc` is missing.
+struct Clock {
+    self_: bool,
+    cpu0: Option<f64>,
+    wall0: Instant,
+}
+
+impl Clock {
+    fn start(self_: bool) -> Clock {
+        Clock {
+            self_,
+            cpu0: cpu_seconds(self_),
+            wall0: Instant::now(),
+        }
+    }
+    /// CPU seconds since `start` (wall-clock seconds without `/proc`).
+    fn cpu(&self) -> f64 {
+        match (self.cpu0, cpu_seconds(self.self_)) {
+            (Some(a), Some(b)) => b - a,
+            _ => self.wall(),
+        }
+    }
+    fn wall(&self) -> f64 {
+        self.wall0.elapsed().as_secs_f64()
+    }
 }
 
 /// xorshift64* generator.
@@ -627,7 +676,8 @@ fn hash(data: &[u8]) -> String {
 // ---------------------------------------------------------------- worker and supervisor
 
 fn worker(o: &Opts) -> Result<(), String> {
-    let deadline = Instant::now() + Duration::from_secs_f64(o.minutes * 60.0);
+    let clock = Clock::start(true);
+    let budget_s = o.minutes * 60.0;
     let seeds_dir = o.out.join("seeds");
     let mut seeds: Vec<Vec<u8>> = Vec::new();
     for e in std::fs::read_dir(&seeds_dir).map_err(|e| e.to_string())? {
@@ -656,11 +706,14 @@ fn worker(o: &Opts) -> Result<(), String> {
     }));
     let mut r = Rng(o.seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1);
     let (mut cases, mut panics, mut max_ms, mut max_peak) = (0u64, 0u64, 0f64, 0usize);
-    let case_limit = Duration::from_secs_f64(o.case_seconds);
-    let stats = |cases, panics, max_ms: f64, max_peak: usize| {
-        println!("STATS {cases} {panics} {max_ms:.1} {}", max_peak >> 20);
+    let mut max_wall_ms = 0f64;
+    let stats = |cases, panics, max_ms: f64, max_wall_ms: f64, max_peak: usize| {
+        println!(
+            "STATS {cases} {panics} {max_ms:.1} {} {max_wall_ms:.1}",
+            max_peak >> 20
+        );
     };
-    while Instant::now() < deadline {
+    while clock.cpu() < budget_s {
         let seed = &seeds[r.below(seeds.len())];
         let data = match o.target.as_str() {
             "obj" | "muscles" => mutate_text(&mut r, &String::from_utf8_lossy(seed)),
@@ -675,7 +728,7 @@ fn worker(o: &Opts) -> Result<(), String> {
         LIMIT.store(base + (o.case_mb << 20), Relaxed);
         let (tx, rx) = std::sync::mpsc::channel();
         let (c2, d2) = (ctx.clone(), data.clone());
-        let start = Instant::now();
+        let case_clock = Clock::start(true);
         std::thread::Builder::new()
             .stack_size(8 << 20)
             .spawn(move || {
@@ -683,11 +736,24 @@ fn worker(o: &Opts) -> Result<(), String> {
                 let _ = tx.send(res);
             })
             .map_err(|e| e.to_string())?;
-        let outcome = rx.recv_timeout(case_limit);
-        let ms = start.elapsed().as_secs_f64() * 1e3;
+        // Poll: slow is over `case_seconds` of CPU, or over `hang_seconds` of wall-clock time.
+        let outcome = loop {
+            match rx.recv_timeout(Duration::from_millis(50)) {
+                Err(std::sync::mpsc::RecvTimeoutError::Timeout) => {
+                    if case_clock.cpu() > o.case_seconds || case_clock.wall() > o.hang_seconds {
+                        break None;
+                    }
+                }
+                Ok(r) => break Some(r),
+                Err(std::sync::mpsc::RecvTimeoutError::Disconnected) => break None,
+            }
+        };
+        let ms = case_clock.cpu() * 1e3;
+        let wall_ms = case_clock.wall() * 1e3;
         LIMIT.store(usize::MAX, Relaxed);
         max_peak = max_peak.max(PEAK.load(Relaxed).saturating_sub(base));
         max_ms = max_ms.max(ms);
+        max_wall_ms = max_wall_ms.max(wall_ms);
         cases += 1;
         let save = |kind: &str, note: &str| {
             let name = format!("{kind}-{}.{e}", hash(&data));
@@ -695,29 +761,38 @@ fn worker(o: &Opts) -> Result<(), String> {
             let _ = std::fs::write(o.out.join(format!("{name}.txt")), note);
         };
         match outcome {
-            Ok(Ok(Ok(()))) => {}
-            Ok(Ok(Err(oracle))) => {
+            Some(Ok(Ok(()))) => {}
+            Some(Ok(Err(oracle))) => {
                 panics += 1;
                 save("wrong", &oracle);
             }
-            Ok(Err(_)) => {
+            Some(Err(_)) => {
                 panics += 1;
                 save(
                     "panic",
                     &message.lock().map(|m| m.clone()).unwrap_or_default(),
                 );
             }
-            Err(_) => {
-                save("slow", &format!("over {} s", o.case_seconds));
-                stats(cases, panics, ms, max_peak);
+            None => {
+                save(
+                    "slow",
+                    &format!(
+                        "over {} s of CPU or {} s of wall-clock time ({:.1} s CPU, {:.1} s wall)",
+                        o.case_seconds,
+                        o.hang_seconds,
+                        ms / 1e3,
+                        wall_ms / 1e3
+                    ),
+                );
+                stats(cases, panics, max_ms, max_wall_ms, max_peak);
                 std::process::exit(3);
             }
         }
         if cases % 500 == 0 {
-            stats(cases, panics, max_ms, max_peak);
+            stats(cases, panics, max_ms, max_wall_ms, max_peak);
         }
     }
-    stats(cases, panics, max_ms, max_peak);
+    stats(cases, panics, max_ms, max_wall_ms, max_peak);
     Ok(())
 }
 
@@ -782,14 +857,20 @@ fn prepare_seeds(o: &Opts) -> Result<(), String> {
 
 fn supervisor(o: &Opts) -> Result<(), String> {
     prepare_seeds(o)?;
-    let start = Instant::now();
-    let total = Duration::from_secs_f64(o.minutes * 60.0);
+    // The workers' CPU time (this process's waited-for children), wall-clock without /proc.
+    let clock = Clock::start(false);
+    let budget_s = o.minutes * 60.0;
     let exe = std::env::current_exe().map_err(|e| e.to_string())?;
     let (mut cases, mut panics, mut max_ms, mut max_peak) = (0u64, 0u64, 0f64, 0u64);
+    let mut max_wall_ms = 0f64;
     let (mut crashes, mut slow, mut restarts) = (0u64, 0u64, 0u64);
-    while start.elapsed() < total {
-        let left = (total - start.elapsed()).as_secs_f64() / 60.0;
-        let out = std::process::Command::new(&exe)
+    while clock.cpu() < budget_s {
+        let left = (budget_s - clock.cpu()) / 60.0;
+        let mut cmd = std::process::Command::new(&exe);
+        if std::env::var_os("RAYON_NUM_THREADS").is_none() {
+            cmd.env("RAYON_NUM_THREADS", "1");
+        }
+        let out = cmd
             .args(["--worker", "--target", &o.target, "--out"])
             .arg(&o.out)
             .args([
@@ -801,6 +882,8 @@ fn supervisor(o: &Opts) -> Result<(), String> {
             .args([
                 "--case-seconds",
                 &o.case_seconds.to_string(),
+                "--hang-seconds",
+                &o.hang_seconds.to_string(),
                 "--case-mb",
                 &o.case_mb.to_string(),
             ])
@@ -815,11 +898,12 @@ fn supervisor(o: &Opts) -> Result<(), String> {
                 .skip(1)
                 .filter_map(|x| x.parse().ok())
                 .collect();
-            if f.len() == 4 {
+            if f.len() == 5 {
                 cases += f[0] as u64;
                 panics += f[1] as u64;
                 max_ms = max_ms.max(f[2]);
                 max_peak = max_peak.max(f[3] as u64);
+                max_wall_ms = max_wall_ms.max(f[4]);
             }
         }
         match out.status.code() {
@@ -843,13 +927,16 @@ fn supervisor(o: &Opts) -> Result<(), String> {
         }
     }
     let summary = format!(
-        "target {}: {:.1} min, {cases} cases ({:.0}/s), {panics} panics or wrong results, {crashes} \
-         aborts, {slow} cases over {} s, slowest case {max_ms:.0} ms, largest per-case heap peak \
-         {max_peak} MiB (limit {} MiB), {restarts} worker runs; findings in {}\n",
+        "target {}: {:.1} CPU min ({:.1} min wall), {cases} cases ({:.0}/CPU s), {panics} panics \
+         or wrong results, {crashes} aborts, {slow} cases over {} s CPU / {} s wall, slowest case \
+         {max_ms:.0} ms CPU ({max_wall_ms:.0} ms wall), largest per-case heap peak {max_peak} MiB \
+         (limit {} MiB), {restarts} worker runs; findings in {}\n",
         o.target,
-        start.elapsed().as_secs_f64() / 60.0,
-        cases as f64 / start.elapsed().as_secs_f64(),
+        clock.cpu() / 60.0,
+        clock.wall() / 60.0,
+        cases as f64 / clock.cpu().max(1e-9),
         o.case_seconds,
+        o.hang_seconds,
         o.case_mb,
         o.out.display()
     );

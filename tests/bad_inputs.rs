@@ -129,3 +129,30 @@ fn input_limits_are_overridable_from_the_command_line() {
     let (code, err) = run(&["--max-input-triangles", "852"]);
     assert_eq!(code, Some(0), "{err}");
 }
+
+#[test]
+fn muscle_limit_is_overridable_from_the_command_line() {
+    let face = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/mediapipe_canonical_4loop.obj");
+    let dir = tempfile::tempdir().unwrap();
+    let muscles = dir.path().join("two.muscles");
+    std::fs::write(
+        &muscles,
+        "[Name]\nm0\n[Size]\n1\n[Data]\n0\n[Name]\nm1\n[Size]\n1\n[Data]\n1\n",
+    )
+    .unwrap();
+    let out_rig = dir.path().join("out.rig");
+    let out = Command::new(env!("CARGO_BIN_EXE_facebem"))
+        .arg("rig")
+        .arg(&face)
+        .arg("--muscles")
+        .arg(&muscles)
+        .arg("-o")
+        .arg(&out_rig)
+        .args(["--max-muscles", "1"])
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(err.contains("line 7: more than 1 muscles"), "{err}");
+    assert!(!out_rig.exists());
+}

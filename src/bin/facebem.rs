@@ -38,6 +38,9 @@ struct Cli {
     /// Most positions and triangles a face mesh may have.
     #[arg(long, global = true, default_value_t = face_prep::InputLimits::default().max_triangles)]
     max_input_triangles: usize,
+    /// Most muscles a muscle file may hold (`rig --muscles`).
+    #[arg(long, global = true, default_value_t = face_prep::InputLimits::default().max_muscles)]
+    max_muscles: usize,
 }
 
 /// Input size limits from the command line (set once in `main`).
@@ -204,7 +207,7 @@ fn run(cli: Cli) -> Result<()> {
         max_file_bytes: cli.max_input_mb.saturating_mul(1 << 20),
         max_positions: cli.max_input_triangles,
         max_triangles: cli.max_input_triangles,
-        ..face_prep::InputLimits::default()
+        max_muscles: cli.max_muscles,
     });
     match cli.command {
         Command::Rig {
@@ -314,8 +317,10 @@ fn rig(face: &Path, output: &Path, muscles: Option<&Path>, solver: &SolverArgs) 
     };
     if let Some(file) = muscles {
         let rig = facebem::prep_rig(&mesh, &params)?;
-        let list = face_prep::muscle_file::load(file, rig.shell.element_count())
-            .with_context(|| format!("muscle file {}", file.display()))?;
+        let limits = LIMITS.get().copied().unwrap_or_default();
+        let list =
+            face_prep::muscle_file::load_with_limits(file, rig.shell.element_count(), &limits)
+                .with_context(|| format!("muscle file {}", file.display()))?;
         params.muscles = Some(list);
     }
     let model = compute(&mesh, obj_source, &params)?;

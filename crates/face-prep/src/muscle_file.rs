@@ -191,10 +191,31 @@ fn read_chain(
 }
 
 /// Parses a muscle file; every index must be below `element_count` (the shell's element count).
+/// At most [`crate::InputLimits::max_muscles`] muscles of the default limits; see
+/// [`read_str_with_limits`].
 pub fn read_str(text: &str, element_count: usize) -> Result<Vec<Muscle>, MuscleFileError> {
+    read_str_with_limits(text, element_count, &crate::InputLimits::default())
+}
+
+/// Like [`read_str`], with explicit limits (`limits.max_muscles` muscles at most; the chains
+/// are bounded by `element_count`, since an element may appear once per chain).
+///
+/// ```
+/// use face_prep::{InputLimits, muscle_file};
+/// let text = "[Name]\nA\n[Size]\n1\n[Data]\n0\n[Name]\nB\n[Size]\n1\n[Data]\n1\n";
+/// let one = InputLimits { max_muscles: 1, ..InputLimits::default() };
+/// let err = muscle_file::read_str_with_limits(text, 2, &one).unwrap_err();
+/// assert!(err.to_string().contains("more than 1 muscles"), "{err}");
+/// assert_eq!(muscle_file::read_str(text, 2).unwrap().len(), 2);
+/// ```
+pub fn read_str_with_limits(
+    text: &str,
+    element_count: usize,
+    limits: &crate::InputLimits,
+) -> Result<Vec<Muscle>, MuscleFileError> {
     let mut lines = Lines::new(text);
     let mut muscles = Vec::new();
-    let max_muscles = crate::InputLimits::default().max_muscles;
+    let max_muscles = limits.max_muscles;
     while let Some((line, l)) = lines.next_nonblank() {
         if muscles.len() >= max_muscles {
             return Err(MuscleFileError::TooManyMuscles {
@@ -247,7 +268,16 @@ pub fn read_str(text: &str, element_count: usize) -> Result<Vec<Muscle>, MuscleF
 
 /// Like [`read_str`], from a reader (at most [`crate::InputLimits::max_file_bytes`] bytes).
 pub fn read(reader: impl Read, element_count: usize) -> Result<Vec<Muscle>, MuscleFileError> {
-    let limit = crate::InputLimits::default().max_file_bytes;
+    read_with_limits(reader, element_count, &crate::InputLimits::default())
+}
+
+/// Like [`read`], with explicit limits (file bytes and muscle count).
+pub fn read_with_limits(
+    reader: impl Read,
+    element_count: usize,
+    limits: &crate::InputLimits,
+) -> Result<Vec<Muscle>, MuscleFileError> {
+    let limit = limits.max_file_bytes;
     let mut text = String::new();
     reader
         .take(limit.saturating_add(1))
@@ -257,7 +287,7 @@ pub fn read(reader: impl Read, element_count: usize) -> Result<Vec<Muscle>, Musc
             "muscle file larger than the input limit of {limit} bytes"
         ))));
     }
-    read_str(&text, element_count)
+    read_str_with_limits(&text, element_count, limits)
 }
 
 /// Formats muscles in the file format (back chain blocks only for muscles that have one).
@@ -299,13 +329,33 @@ pub fn save(path: &Path, muscles: &[Muscle]) -> Result<(), MuscleFileError> {
         .map_err(|e| MuscleFileError::Io(std::io::Error::other(e.to_string())))
 }
 
-/// Reads a muscle file from disk (a regular file only: a FIFO or device is refused unopened).
+/// Reads a muscle file from disk (a regular file only: a FIFO or device is refused unopened),
+/// under the default limits; see [`load_with_limits`].
 pub fn load(path: &Path, element_count: usize) -> Result<Vec<Muscle>, MuscleFileError> {
-    if !std::fs::metadata(path)?.is_file() {
+    load_with_limits(path, element_count, &crate::InputLimits::default())
+}
+
+/// Like [`load`], with explicit limits (file bytes, checked from the file's size before
+/// reading, and muscle count).
+pub fn load_with_limits(
+    path: &Path,
+    element_count: usize,
+    limits: &crate::InputLimits,
+) -> Result<Vec<Muscle>, MuscleFileError> {
+    let meta = std::fs::metadata(path)?;
+    if !meta.is_file() {
         return Err(MuscleFileError::Io(std::io::Error::other(format!(
             "{} is not a regular file",
             path.display()
         ))));
     }
-    read(std::fs::File::open(path)?, element_count)
+    if meta.len() > limits.max_file_bytes {
+        return Err(MuscleFileError::Io(std::io::Error::other(format!(
+            "{} is {} bytes, above the input limit of {} bytes",
+            path.display(),
+            meta.len(),
+            limits.max_file_bytes
+        ))));
+    }
+    read_with_limits(std::fs::File::open(path)?, element_count, limits)
 }
