@@ -292,6 +292,19 @@ pub enum PrepError {
         /// What the loops are and why they do not make a front face.
         reason: String,
     },
+    /// The surface crosses itself far more than a fold can (a triangle crossing dozens of
+    /// others): its vertex positions are out of order, e.g. a `v` line moved or swapped.
+    #[error(
+        "the face surface is scrambled: triangle {triangle} crosses {crossings} other triangles \
+         (a fold such as pressed lips crosses at most a few); are the vertex positions out of \
+         order (a `v` line moved or swapped)?"
+    )]
+    ScrambledSurface {
+        /// The triangle crossing the most others (0-based).
+        triangle: usize,
+        /// How many triangles it crosses.
+        crossings: usize,
+    },
     /// The canonical frame cannot be determined.
     #[error("cannot orient the face: {reason}")]
     Orientation {

@@ -190,6 +190,18 @@ impl FaceRig {
             }
             None => auto,
         };
+        // Scrambled geometry (a `v` line swapped) is refused before the shell repair, which
+        // cannot open it and would spend O(triangles²) per round trying.
+        let front_pairs = crate::shell::intersecting_pairs(&verts, &face.triangles);
+        if let Some((triangle, crossings)) =
+            crate::shell::most_crossed(&front_pairs, face.triangles.len())
+            && crossings > crate::shell::MAX_REPAIRABLE_CROSSINGS
+        {
+            return Err(PrepError::ScrambledSurface {
+                triangle,
+                crossings,
+            });
+        }
         let shell = Shell::build(
             &verts,
             &face.triangles,

@@ -660,6 +660,30 @@ pub fn intersecting_pairs(vertices: &[DVec3], triangles: &[[u32; 3]]) -> Vec<[u3
     pairs
 }
 
+/// The triangle in the most of `pairs` (as from [`intersecting_pairs`] over `triangle_count`
+/// triangles) and in how many; `None` without pairs. Ties give the lowest index.
+///
+/// ```
+/// use face_prep::shell::most_crossed;
+/// assert_eq!(most_crossed(&[[0, 2], [1, 2], [2, 3]], 4), Some((2, 3)));
+/// assert_eq!(most_crossed(&[], 4), None);
+/// ```
+pub fn most_crossed(pairs: &[[u32; 2]], triangle_count: usize) -> Option<(usize, usize)> {
+    let mut crossings = vec![0usize; triangle_count];
+    for &[a, b] in pairs {
+        for t in [a, b] {
+            if let Some(c) = crossings.get_mut(t as usize) {
+                *c += 1;
+            }
+        }
+    }
+    let (t, c) = crossings
+        .iter()
+        .enumerate()
+        .max_by_key(|&(t, &c)| (c, std::cmp::Reverse(t)))?;
+    (*c > 0).then_some((t, *c))
+}
+
 /// Whether two triangles of one indexed mesh (indices `ta`, `tb`, corners `a`, `b`) intersect:
 /// never when they share an edge; with their edges opposite to a shared vertex; else any edge
 /// of one crossing the other.
@@ -702,6 +726,14 @@ pub const FRONT_REPAIR_GAP: f64 = 0.02;
 /// near-singular.
 pub const FRONT_CLEARANCE: f64 = 0.3;
 
+/// Most intersecting front triangle pairs one triangle may be part of for
+/// [`repair_front_intersections`] to try to open them. At a fold (pressed or rolled lips) a
+/// triangle crosses a few neighbours of the other sheet (the bundled faces: at most 9, ICT 13k); a
+/// triangle crossing dozens spans the surface: scrambled geometry (a swapped `v` line), which
+/// local pushes cannot repair and on which every round costs O(triangles²). Such a surface is
+/// left as it is after one intersection pass.
+pub const MAX_REPAIRABLE_CROSSINGS: usize = 32;
+
 /// No front vertex is moved further than this many of its mean edge lengths from the input.
 pub const MAX_MOVE_EDGES: f64 = 1.0;
 
@@ -723,7 +755,9 @@ pub const FACING_COSINE: f64 = -0.3;
 /// A vertex pushed by several triangles takes the largest push; both sides move, so they meet
 /// half-way; no vertex ends up further than [`MAX_MOVE_EDGES`] of its mean edge lengths from
 /// where it started. Rounds repeat until nothing is left to do or `rounds` ran out; the result
-/// is the latest state with the fewest intersecting pairs. Vertices of no offending pair never
+/// is the latest state with the fewest intersecting pairs. A surface with a triangle in more
+/// than [`MAX_REPAIRABLE_CROSSINGS`] intersecting pairs is scrambled, not folded, and is
+/// returned unchanged. Vertices of no offending pair never
 /// move, and a surface without any is left bit-for-bit unchanged.
 pub fn repair_front_intersections(
     vertices: &mut [DVec3],
@@ -744,6 +778,15 @@ pub fn repair_front_intersections(
         .collect();
     let mut pairs = intersecting_pairs(vertices, triangles);
     let input_intersections = pairs.len();
+    if most_crossed(&pairs, triangles.len()).is_some_and(|(_, c)| c > MAX_REPAIRABLE_CROSSINGS) {
+        return FrontRepair {
+            input_intersections,
+            remaining_intersections: input_intersections,
+            rounds: 0,
+            moved_vertices: 0,
+            max_displacement: 0.0,
+        };
+    }
     // The state with the fewest intersecting pairs so far (the latest among equals).
     let mut best = (pairs.clone(), vertices.to_vec());
     let mut done = 0;

@@ -107,3 +107,35 @@ fn zero_rounds_leave_crossing_sheets_as_they_are() {
     );
     assert_eq!(v, input);
 }
+
+/// Regression (issue 13, fuzz find `obj_fuzz_lee_perry_smith_scrambled_slow_front_repair.obj`):
+/// scrambled geometry — vertex positions shuffled, so triangles span the sheet and cross each
+/// other everywhere — is not a fold the local pushes can open, and every round cost O(n²). It is
+/// returned unchanged after one intersection pass.
+#[test]
+fn scrambled_sheet_is_left_unrepaired_after_one_pass() {
+    use face_prep::shell::MAX_REPAIRABLE_CROSSINGS;
+    let m = 15;
+    let (mut v, t) = sheet(m, |x, y| 0.05 * (3.0 * x).sin() * (2.0 * y).cos(), true, 0);
+    // Reverse the order of the positions of every third vertex among themselves.
+    let picked: Vec<usize> = (0..v.len()).step_by(3).collect();
+    let positions: Vec<DVec3> = picked.iter().map(|&i| v[i]).collect();
+    for (&i, p) in picked.iter().zip(positions.iter().rev()) {
+        v[i] = *p;
+    }
+    let pairs = intersecting_pairs(&v, &t);
+    let most = (0..t.len() as u32)
+        .map(|k| pairs.iter().filter(|p| p.contains(&k)).count())
+        .max()
+        .unwrap_or(0);
+    assert!(
+        most > MAX_REPAIRABLE_CROSSINGS,
+        "at most {most} crossings per triangle: not scrambled enough for this test"
+    );
+    let input = v.clone();
+    let r = repair_front_intersections(&mut v, &t, 30);
+    assert_eq!(r.rounds, 0, "{r:?}");
+    assert_eq!(r.input_intersections, pairs.len());
+    assert_eq!(r.remaining_intersections, pairs.len());
+    assert_eq!(v, input);
+}
