@@ -76,8 +76,10 @@ fn report(model: &FaceModel) -> anyhow::Result<()> {
         c(lm.brow_l)
     );
     for m in &model.rig.muscles {
-        if let Some(k) = m.kind {
-            let a = face_prep::anatomy::attachment(k, &model.rig.boxes);
+        if let Some((k, a)) = m
+            .kind
+            .and_then(|k| Some((k, face_prep::anatomy::attachment(k, &model.rig.boxes)?)))
+        {
             println!(
                 "  {:<30} origin {:>6.1?} insertion {:>6.1?} front {:>3} back {:>3}",
                 k.id(),

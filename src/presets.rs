@@ -1,9 +1,10 @@
-//! Expression presets: named slider combinations of the ten standard muscles.
+//! Expression presets: named slider combinations of the rig's standard controls, keyed by
+//! control id ([`face_prep::MuscleKind::id`]); a control a preset does not list is 0.
 //!
 //! Slider convention (DESIGN.md "Muscles"): a NEGATIVE value contracts the muscle, a positive one
 //! relaxes it (moves the tissue the other way). Each preset says which FACS action units (AU) it
-//! stands for. The rig has ten muscles only, so several AUs are approximated by the closest muscle
-//! the rig has; the approximation is stated next to each preset:
+//! stands for. Where the rig lacks the muscle of an AU, the AU is approximated by the closest
+//! control the rig has; the approximation is stated next to each preset:
 //!
 //! - frontalis contraction ≈ AU1 + AU2 (inner and outer brow raiser); frontalis *relaxation*
 //!   pushes the brow down and stands in for AU4 (brow lowerer, corrugator — not in the rig);
@@ -23,7 +24,7 @@
 
 use face_prep::MuscleKind;
 
-/// One named expression: a value in [−1, 1] for each of the ten standard muscles.
+/// One named expression: a value in [−1, 1] for some of the standard controls (the others 0).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Preset {
     /// Identifier used by the CLI (`--preset happy`), the viewer and glTF target names.
@@ -32,8 +33,8 @@ pub struct Preset {
     pub action_units: &'static str,
     /// One-line description of the combination.
     pub description: &'static str,
-    /// Slider values in the order of [`MuscleKind::ALL`] (negative = contract).
-    pub sliders: [f64; 10],
+    /// `(control id, slider value)` pairs (negative = contract); unlisted controls are 0.
+    pub sliders: &'static [(&'static str, f64)],
 }
 
 /// Other accepted names for a preset (`alias`, `preset name`).
@@ -44,63 +45,118 @@ pub const ALIASES: [(&str, &str); 4] = [
     ("sadness", "sad"),
 ];
 
-// Slider order: frontalis L R, levator labii sup. L R, zygomaticus major L R, mentalis L R,
-// depressor labii inf. L R.
 /// All presets, `neutral` first.
 pub const ALL: [Preset; 9] = [
     Preset {
         name: "neutral",
         action_units: "AU0",
         description: "every muscle at rest",
-        sliders: [0.0; 10],
+        sliders: &[],
     },
     Preset {
         name: "happy",
         action_units: "AU6 + AU12",
         description: "zygomaticus major contracted, cheeks and upper lip slightly raised",
-        sliders: [0.0, 0.0, -0.2, -0.2, -0.8, -0.8, 0.0, 0.0, 0.0, 0.0],
+        sliders: &[
+            ("levator_labii_superioris_l", -0.2),
+            ("levator_labii_superioris_r", -0.2),
+            ("zygomaticus_major_l", -0.8),
+            ("zygomaticus_major_r", -0.8),
+        ],
     },
     Preset {
         name: "smile",
         action_units: "AU12",
         description: "closed-lip smile: zygomaticus major only",
-        sliders: [0.0, 0.0, 0.0, 0.0, -0.5, -0.5, 0.0, 0.0, 0.0, 0.0],
+        sliders: &[("zygomaticus_major_l", -0.5), ("zygomaticus_major_r", -0.5)],
     },
     Preset {
         name: "laugh",
         action_units: "AU6 + AU12 + AU25 + AU26",
         description: "full zygomaticus pull, upper lip up, lower lip down, brows slightly up",
-        sliders: [-0.2, -0.2, -0.4, -0.4, -1.0, -1.0, 0.0, 0.0, -0.5, -0.5],
+        sliders: &[
+            ("frontalis_l", -0.2),
+            ("frontalis_r", -0.2),
+            ("levator_labii_superioris_l", -0.4),
+            ("levator_labii_superioris_r", -0.4),
+            ("zygomaticus_major_l", -1.0),
+            ("zygomaticus_major_r", -1.0),
+            ("depressor_labii_inferioris_l", -0.5),
+            ("depressor_labii_inferioris_r", -0.5),
+        ],
     },
     Preset {
         name: "sad",
         action_units: "AU1 + AU4 + AU15 + AU17",
         description: "inner brow up, lip corners down (zygomaticus relaxed), chin raised",
-        sliders: [-0.4, -0.4, 0.0, 0.0, 0.4, 0.4, -0.5, -0.5, -0.3, -0.3],
+        sliders: &[
+            ("frontalis_l", -0.4),
+            ("frontalis_r", -0.4),
+            ("zygomaticus_major_l", 0.4),
+            ("zygomaticus_major_r", 0.4),
+            ("mentalis_l", -0.5),
+            ("mentalis_r", -0.5),
+            ("depressor_labii_inferioris_l", -0.3),
+            ("depressor_labii_inferioris_r", -0.3),
+        ],
     },
     Preset {
         name: "angry",
         action_units: "AU4 + AU10 + AU17 + AU23",
         description: "brow pushed down (frontalis relaxed), upper lip raised, chin raised",
-        sliders: [0.7, 0.7, -0.4, -0.4, 0.2, 0.2, -0.6, -0.6, 0.0, 0.0],
+        sliders: &[
+            ("frontalis_l", 0.7),
+            ("frontalis_r", 0.7),
+            ("levator_labii_superioris_l", -0.4),
+            ("levator_labii_superioris_r", -0.4),
+            ("zygomaticus_major_l", 0.2),
+            ("zygomaticus_major_r", 0.2),
+            ("mentalis_l", -0.6),
+            ("mentalis_r", -0.6),
+        ],
     },
     Preset {
         name: "surprised",
         action_units: "AU1 + AU2 + AU5 + AU26",
         description: "brows fully raised, lower lip dropped",
-        sliders: [-1.0, -1.0, 0.0, 0.0, 0.0, 0.0, 0.3, 0.3, -0.6, -0.6],
+        sliders: &[
+            ("frontalis_l", -1.0),
+            ("frontalis_r", -1.0),
+            ("mentalis_l", 0.3),
+            ("mentalis_r", 0.3),
+            ("depressor_labii_inferioris_l", -0.6),
+            ("depressor_labii_inferioris_r", -0.6),
+        ],
     },
     Preset {
         name: "disgust",
         action_units: "AU9 + AU10 + AU16 + AU17",
         description: "upper lip raised hard, lower lip down and out, brow slightly lowered",
-        sliders: [0.3, 0.3, -1.0, -1.0, 0.0, 0.0, -0.3, -0.3, -0.4, -0.4],
+        sliders: &[
+            ("frontalis_l", 0.3),
+            ("frontalis_r", 0.3),
+            ("levator_labii_superioris_l", -1.0),
+            ("levator_labii_superioris_r", -1.0),
+            ("mentalis_l", -0.3),
+            ("mentalis_r", -0.3),
+            ("depressor_labii_inferioris_l", -0.4),
+            ("depressor_labii_inferioris_r", -0.4),
+        ],
     },
     Preset {
         name: "fear",
         action_units: "AU1 + AU2 + AU4 + AU20 + AU26",
         description: "brows raised, lips stretched and parted",
-        sliders: [-0.8, -0.8, 0.0, 0.0, -0.2, -0.2, -0.2, -0.2, -0.7, -0.7],
+        sliders: &[
+            ("frontalis_l", -0.8),
+            ("frontalis_r", -0.8),
+            ("zygomaticus_major_l", -0.2),
+            ("zygomaticus_major_r", -0.2),
+            ("mentalis_l", -0.2),
+            ("mentalis_r", -0.2),
+            ("depressor_labii_inferioris_l", -0.7),
+            ("depressor_labii_inferioris_r", -0.7),
+        ],
     },
 ];
 
@@ -120,19 +176,24 @@ pub fn names() -> Vec<&'static str> {
 }
 
 impl Preset {
-    /// Slider value of one standard muscle.
+    /// Slider value of one standard control (0 when the preset does not list it).
     pub fn slider(&self, muscle: MuscleKind) -> f64 {
-        self.sliders[muscle.index()]
+        self.slider_by_id(muscle.id())
+    }
+
+    /// Slider value of the control with id `id` (case-insensitive; 0 when not listed).
+    pub fn slider_by_id(&self, id: &str) -> f64 {
+        self.sliders
+            .iter()
+            .find(|(k, _)| k.eq_ignore_ascii_case(id.trim()))
+            .map_or(0.0, |&(_, v)| v)
     }
 
     /// The slider vector for a basis whose muscles are named `muscle_ids` (e.g.
-    /// [`crate::MuscleBasis::muscle_ids`]): standard muscles get the preset value, any other
+    /// [`crate::MuscleBasis::muscle_ids`]): standard controls get the preset value, any other
     /// (user-defined) muscle gets 0.
     pub fn sliders_for(&self, muscle_ids: &[String]) -> Vec<f64> {
-        muscle_ids
-            .iter()
-            .map(|id| MuscleKind::from_id(id).map_or(0.0, |m| self.slider(m)))
-            .collect()
+        muscle_ids.iter().map(|id| self.slider_by_id(id)).collect()
     }
 }
 
@@ -143,9 +204,23 @@ mod tests {
     #[test]
     fn presets_are_in_range_symmetric_and_unique() {
         for (i, p) in ALL.iter().enumerate() {
+            for &(id, s) in p.sliders {
+                assert!(
+                    MuscleKind::from_id(id).is_some(),
+                    "{}: unknown control {id}",
+                    p.name
+                );
+                assert!((-1.0..=1.0).contains(&s) && s != 0.0, "{} {id}", p.name);
+            }
+            for (k, &(id, _)) in p.sliders.iter().enumerate() {
+                assert!(
+                    p.sliders[k + 1..].iter().all(|&(other, _)| other != id),
+                    "{}: {id} listed twice",
+                    p.name
+                );
+            }
             for m in MuscleKind::ALL {
                 let s = p.slider(m);
-                assert!((-1.0..=1.0).contains(&s), "{} {}", p.name, m.id());
                 assert_eq!(s, p.slider(m.mirror()), "{} is not L/R symmetric", p.name);
             }
             for q in &ALL[i + 1..] {
@@ -153,7 +228,7 @@ mod tests {
                 assert_ne!(p.sliders, q.sliders, "{} == {}", p.name, q.name);
             }
         }
-        assert!(ALL[0].sliders.iter().all(|&s| s == 0.0));
+        assert!(ALL[0].sliders.is_empty());
     }
 
     #[test]

@@ -60,6 +60,7 @@ fn zygomaticus_moves_its_corner(face: usize, kind: MuscleKind, share: f64) {
     let (corner, lateral) = match kind.side() {
         face_prep::Side::Left => (lm.mouth_corner_l, 1.0),
         face_prep::Side::Right => (lm.mouth_corner_r, -1.0),
+        face_prep::Side::Center => panic!("the zygomaticus is paired"),
     };
     let d = lm.canonical_mm(field[corner as usize]);
     let elevation = elevation_deg(d, lateral);
@@ -150,7 +151,9 @@ fn largest_motion_in_the_muscles_region(face: usize) {
             .canonical_from_input
             .transform_point3(m.mesh.vertices[v])
             .truncate();
-        let a = face_prep::anatomy::attachment(kind, &m.rig.boxes);
+        let Some(a) = face_prep::anatomy::attachment(kind, &m.rig.boxes) else {
+            continue; // not a muscle band
+        };
         let seg = a.insertion - a.origin;
         let t = ((p - a.origin).dot(seg) / seg.length_squared()).clamp(0.0, 1.0);
         let dist_mm = p.distance(a.origin + seg * t) * mm;

@@ -208,7 +208,8 @@ fn muscle_patterns_follow_their_definers(face: usize) {
     let (mut count, mut backward, mut cos_sum) = (0usize, 0usize, 0.0);
     for (k, mu) in m.rig.muscles.iter().enumerate() {
         let kind = mu.kind.expect("default rigs have the standard muscles");
-        let (start, end) = face_prep::muscles::muscle_definer(kind, &m.rig.boxes);
+        let (start, end) = face_prep::muscles::muscle_definer(kind, &m.rig.boxes)
+            .expect("thesis rigs hold the thesis's muscles");
         let axis = (end - start).normalize();
         let pattern = m.rig.muscle_pattern(k);
         for (_, relax) in &pattern[..mu.front_chain.len()] {
@@ -534,7 +535,7 @@ fn mediapipe_left_and_right_responses_mirror() {
         .fold(0.0, f64::max);
     assert!(asym < 1e-3 * m.rig.face_size, "mesh asymmetry {asym}");
     let flip = DVec3::new(-1.0, 1.0, 1.0);
-    for left in MuscleKind::ALL
+    for left in MuscleKind::THESIS
         .into_iter()
         .filter(|k| k.side() == face_prep::Side::Left)
     {

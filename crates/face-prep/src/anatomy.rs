@@ -101,8 +101,9 @@ impl Landmarks {
     }
 }
 
-/// The attachment of a standard muscle (the face's left muscle is mirrored about the mouth's
-/// centre line for the right one, so a symmetric face gets symmetric muscles).
+/// The attachment of a standard muscle band (the face's left muscle is mirrored about the
+/// mouth's centre line for the right one, so a symmetric face gets symmetric muscles); `None`
+/// for a control that is not a muscle band ([`crate::muscle_kind::Generator`]).
 ///
 /// | muscle | origin (bone) | insertion (skin) |
 /// |---|---|---|
@@ -124,17 +125,17 @@ impl Landmarks {
 ///     b(-2.5, -5.5, 2.5, -4.5),
 /// )
 /// .unwrap();
-/// let zl = attachment(MuscleKind::ZygomaticusMajorL, &boxes);
-/// let zr = attachment(MuscleKind::ZygomaticusMajorR, &boxes);
+/// let zl = attachment(MuscleKind::ZygomaticusMajorL, &boxes).unwrap();
+/// let zr = attachment(MuscleKind::ZygomaticusMajorR, &boxes).unwrap();
 /// // Runs up and out from the mouth corner; the right one is the mirror image.
 /// assert!(zl.origin.x > zl.insertion.x && zl.origin.y > zl.insertion.y);
 /// assert!((zl.origin.x + zr.origin.x).abs() < 1e-12);
 /// ```
-pub fn attachment(kind: MuscleKind, boxes: &FeatureBoxes) -> Attachment {
+pub fn attachment(kind: MuscleKind, boxes: &FeatureBoxes) -> Option<Attachment> {
     let l = Landmarks::of(boxes);
-    let left = left_attachment(kind, &l);
-    match kind.side() {
-        Side::Left => left,
+    let left = kind.band()?(&l);
+    Some(match kind.side() {
+        Side::Left | Side::Center => left,
         Side::Right => {
             let m = |p: DVec2| DVec2::new(2.0 * l.mouth.x - p.x, p.y);
             Attachment {
@@ -143,70 +144,87 @@ pub fn attachment(kind: MuscleKind, boxes: &FeatureBoxes) -> Attachment {
                 ..left
             }
         }
+    })
+}
+
+/// The left eye's centre measured from the mouth's centre line (so left and right mirror
+/// exactly): (x, y) of the face's-left eye.
+fn left_eye(l: &Landmarks) -> DVec2 {
+    DVec2::new(l.mouth.x + 0.5 * l.iod, 0.5 * (l.eye_l.y + l.eye_r.y))
+}
+
+/// Frontalis (face's left): galea aponeurotica → eyebrow skin.
+pub fn frontalis(l: &Landmarks) -> Attachment {
+    let eye = left_eye(l);
+    Attachment {
+        origin: DVec2::new(eye.x, eye.y + 0.95 * l.iod),
+        insertion: DVec2::new(eye.x, eye.y + 0.2 * l.iod),
+        half_width_mm: 24.0,
+        max_strain: 0.35,
+        spread_mm: 0.0,
     }
 }
 
-/// The attachment of the face's-left twin of `kind`.
-fn left_attachment(kind: MuscleKind, l: &Landmarks) -> Attachment {
-    use MuscleKind::*;
-    // The left eye measured from the mouth's centre line, so left and right mirror exactly.
-    let half_iod = 0.5 * l.iod;
-    let eye_x = l.mouth.x + half_iod;
-    let eye_y = 0.5 * (l.eye_l.y + l.eye_r.y);
-    let corner = DVec2::new(l.mouth.x + l.mouth_half_width, l.mouth.y);
-    match kind {
-        FrontalisL | FrontalisR => Attachment {
-            origin: DVec2::new(eye_x, eye_y + 0.95 * l.iod),
-            insertion: DVec2::new(eye_x, eye_y + 0.2 * l.iod),
-            half_width_mm: 24.0,
-            max_strain: 0.35,
-            spread_mm: 0.0,
-        },
-        LevatorLabiiSuperiorisL | LevatorLabiiSuperiorisR => Attachment {
-            origin: DVec2::new(eye_x - 0.2 * l.iod, eye_y - 0.3 * l.h),
-            insertion: DVec2::new(
-                l.mouth.x + 0.45 * l.mouth_half_width,
-                l.mouth_top + 0.1 * l.iod,
-            ),
-            half_width_mm: 7.0,
-            max_strain: 0.15,
-            spread_mm: 0.0,
-        },
-        ZygomaticusMajorL | ZygomaticusMajorR => Attachment {
-            origin: DVec2::new(eye_x + l.eye_half_width + 0.05 * l.iod, eye_y - 0.3 * l.h),
-            insertion: corner,
-            half_width_mm: 8.0,
-            max_strain: 0.25,
-            // The modiolus: the lip corner moves with the insertion instead of hanging from it
-            // as a thin free flap (up to 2.7 times the insertion's motion on the simplified
-            // ICT faces without it).
-            spread_mm: 6.0,
-        },
-        MentalisL | MentalisR => Attachment {
-            origin: DVec2::new(
-                l.mouth.x + 0.2 * l.mouth_half_width,
-                l.mouth_bottom - 0.12 * l.h,
-            ),
-            insertion: DVec2::new(
-                l.mouth.x + 0.2 * l.mouth_half_width,
-                l.mouth_bottom - 0.42 * l.h,
-            ),
-            half_width_mm: 7.0,
-            max_strain: 0.2,
-            spread_mm: 0.0,
-        },
-        DepressorLabiiInferiorisL | DepressorLabiiInferiorisR => Attachment {
-            origin: DVec2::new(
-                l.mouth.x + 0.9 * l.mouth_half_width,
-                l.mouth_bottom - 0.45 * l.h,
-            ),
-            insertion: DVec2::new(
-                l.mouth.x + 0.4 * l.mouth_half_width,
-                l.mouth_bottom - 0.05 * l.iod,
-            ),
-            half_width_mm: 7.0,
-            max_strain: 0.15,
-            spread_mm: 0.0,
-        },
+/// Levator labii superioris (face's left): infraorbital margin → upper lip.
+pub fn levator_labii_superioris(l: &Landmarks) -> Attachment {
+    let eye = left_eye(l);
+    Attachment {
+        origin: DVec2::new(eye.x - 0.2 * l.iod, eye.y - 0.3 * l.h),
+        insertion: DVec2::new(
+            l.mouth.x + 0.45 * l.mouth_half_width,
+            l.mouth_top + 0.1 * l.iod,
+        ),
+        half_width_mm: 7.0,
+        max_strain: 0.15,
+        spread_mm: 0.0,
+    }
+}
+
+/// Zygomaticus major (face's left): zygomatic bone → modiolus at the mouth corner.
+pub fn zygomaticus_major(l: &Landmarks) -> Attachment {
+    let eye = left_eye(l);
+    Attachment {
+        origin: DVec2::new(eye.x + l.eye_half_width + 0.05 * l.iod, eye.y - 0.3 * l.h),
+        insertion: DVec2::new(l.mouth.x + l.mouth_half_width, l.mouth.y),
+        half_width_mm: 8.0,
+        max_strain: 0.25,
+        // The modiolus: the lip corner moves with the insertion instead of hanging from it
+        // as a thin free flap (up to 2.7 times the insertion's motion on the simplified
+        // ICT faces without it).
+        spread_mm: 6.0,
+    }
+}
+
+/// Mentalis (face's left): incisive fossa of the mandible → chin skin.
+pub fn mentalis(l: &Landmarks) -> Attachment {
+    Attachment {
+        origin: DVec2::new(
+            l.mouth.x + 0.2 * l.mouth_half_width,
+            l.mouth_bottom - 0.12 * l.h,
+        ),
+        insertion: DVec2::new(
+            l.mouth.x + 0.2 * l.mouth_half_width,
+            l.mouth_bottom - 0.42 * l.h,
+        ),
+        half_width_mm: 7.0,
+        max_strain: 0.2,
+        spread_mm: 0.0,
+    }
+}
+
+/// Depressor labii inferioris (face's left): oblique line of the mandible → lower lip.
+pub fn depressor_labii_inferioris(l: &Landmarks) -> Attachment {
+    Attachment {
+        origin: DVec2::new(
+            l.mouth.x + 0.9 * l.mouth_half_width,
+            l.mouth_bottom - 0.45 * l.h,
+        ),
+        insertion: DVec2::new(
+            l.mouth.x + 0.4 * l.mouth_half_width,
+            l.mouth_bottom - 0.05 * l.iod,
+        ),
+        half_width_mm: 7.0,
+        max_strain: 0.15,
+        spread_mm: 0.0,
     }
 }

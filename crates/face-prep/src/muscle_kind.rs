@@ -1,8 +1,46 @@
-//! The ten standard facial muscles of the thesis (Table 7.1) and their names.
+//! The rig's standard controls: one table row per control (muscle, jaw mode, ...), with its
+//! id, display name, side, mirror twin, the muscle models that place it, and the generator of
+//! its prescribed displacement.
+//!
+//! The first ten rows are the ten muscles of the thesis (Table 7.1), in the thesis's order
+//! ([`MuscleKind::THESIS`]); the thesis model places only these, so its rigs and bases stay
+//! bit for bit what they were. The anatomical model places every row ([`MuscleKind::ALL`]).
+//!
+//! # Adding a control
+//!
+//! 1. Add one row to the `controls!` table below (at the end; the row order is the order of
+//!    sliders, basis columns and exports):
+//!    `/// doc line` then `Variant = ("id", "Display name", Side, Mirror, Placed, Generator)`:
+//!    - `id`: the snake_case id agreed in `/work/notes/ids.md` (`_l`/`_r` = the face's own
+//!      left/right, +x/−x in the canonical frame). Used in files, the CLI
+//!      (`--set jaw_open=-1`), glTF target names and presets.
+//!    - `Display name`: what the viewer shows, e.g. "Zygomaticus major L".
+//!    - `Side`: `Left`, `Right` or `Center` (unpaired, e.g. `procerus`).
+//!    - `Mirror`: the variant of the twin on the other side; an unpaired control names
+//!      itself. (The table's test checks that mirroring is an involution between opposite
+//!      sides.)
+//!    - `Placed`: [`Placed::Thesis`] only for the original ten (placed by both models);
+//!      every new control is [`Placed::Anatomical`].
+//!    - `Generator`: how the control is placed and what it prescribes ([`Generator`]).
+//!      A muscle from a bony origin to a skin insertion is `Band(anatomy::my_muscle)`, where
+//!      `my_muscle(&Landmarks) -> Attachment` (in [`crate::anatomy`]) gives the face's-LEFT
+//!      twin's (or the unpaired control's) origin, insertion, width and strain; the right
+//!      twin uses the same function and is mirrored about the mouth's centre line.
+//! 2. A control that is not a muscle band (a rigid jaw mode, a lid target, a pressure) adds a
+//!    [`Generator`] variant and handles it in the two dispatch points:
+//!    `FaceRig::place_control` (which elements it prescribes: its chains) and
+//!    `FaceRig::control_pattern` (the per-element displacement at slider = +1), both in
+//!    `crates/face-prep/src/controls.rs`.
+//! 3. Presets (root crate `src/presets.rs`) name controls by id, so a new control is 0 in
+//!    every preset until a preset lists it.
+//!
+//! Slider convention for every control: −1 = full activation ("contraction"), +1 the linear
+//! opposite with the same limit.
 
+use crate::anatomy::{self, Attachment, Landmarks};
 use serde::{Deserialize, Serialize};
 
-/// Which side of the face a muscle is on. "Left" is the face's own left, i.e. +x in the
+/// Which side of the face a control is on. "Left" is the face's own left, i.e. +x in the
 /// canonical frame (the face looks toward +z).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
 pub enum Side {
@@ -10,44 +48,143 @@ pub enum Side {
     Left,
     /// The face's right (−x in the canonical frame).
     Right,
+    /// Unpaired, on the midline (its mirror is itself).
+    Center,
 }
 
-/// One of the ten standard muscles placed automatically from the feature boxes.
-///
-/// ```
-/// use face_prep::MuscleKind;
-/// let m = MuscleKind::from_id("zygomaticus_major_l").unwrap();
-/// assert_eq!(m, MuscleKind::ZygomaticusMajorL);
-/// assert_eq!(m.mirror(), MuscleKind::ZygomaticusMajorR);
-/// assert_eq!(m.display_name(), "Zygomaticus major L");
-/// ```
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
-pub enum MuscleKind {
+impl Side {
+    /// The other side (`Center` stays `Center`).
+    pub fn opposite(self) -> Side {
+        match self {
+            Side::Left => Side::Right,
+            Side::Right => Side::Left,
+            Side::Center => Side::Center,
+        }
+    }
+}
+
+/// Which muscle models place a control.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Placed {
+    /// Both the thesis model and the anatomical model (only the original ten muscles).
+    Thesis,
+    /// Only the anatomical model.
+    Anatomical,
+}
+
+/// How a control is placed on the shell and what displacement it prescribes.
+#[derive(Clone, Copy, Debug)]
+pub enum Generator {
+    /// A muscle band from a bony origin to a skin insertion ([`crate::muscle_model`]): the
+    /// function gives the attachment of the face's-left twin (or of an unpaired control) from
+    /// the eye and mouth landmarks; [`anatomy::attachment`] mirrors it for the right twin.
+    Band(fn(&Landmarks) -> Attachment),
+}
+
+/// One row of the control table.
+#[derive(Clone, Copy, Debug)]
+pub struct ControlSpec {
+    /// The control this row describes.
+    pub kind: MuscleKind,
+    /// Stable snake_case identifier.
+    pub id: &'static str,
+    /// Human-readable name.
+    pub display_name: &'static str,
+    /// Side of the face.
+    pub side: Side,
+    /// The twin on the other side (itself when unpaired).
+    pub mirror: MuscleKind,
+    /// Which muscle models place it.
+    pub placed: Placed,
+    /// How it is placed and what it prescribes.
+    pub generator: Generator,
+}
+
+/// Defines [`MuscleKind`], [`MuscleKind::ALL`] and the table from one row per control.
+macro_rules! controls {
+    ($(
+        $(#[$doc:meta])*
+        $variant:ident = ($id:literal, $name:literal, $side:ident, $mirror:ident, $placed:ident,
+            $generator:expr)
+    ),* $(,)?) => {
+        /// One of the rig's standard controls, placed automatically from the feature boxes
+        /// (see the module documentation for the table and how to add a row).
+        ///
+        /// ```
+        /// use face_prep::{MuscleKind, Side};
+        /// let m = MuscleKind::from_id("zygomaticus_major_l").unwrap();
+        /// assert_eq!(m, MuscleKind::ZygomaticusMajorL);
+        /// assert_eq!(m.mirror(), MuscleKind::ZygomaticusMajorR);
+        /// assert_eq!(m.side(), Side::Left);
+        /// assert_eq!(m.display_name(), "Zygomaticus major L");
+        /// assert_eq!(&MuscleKind::ALL[..10], &MuscleKind::THESIS[..]);
+        /// ```
+        #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+        pub enum MuscleKind {
+            $( $(#[$doc])* $variant, )*
+        }
+
+        impl MuscleKind {
+            /// Every standard control in table order (the order of sliders and basis
+            /// columns); the anatomical model places them all.
+            pub const ALL: [MuscleKind; [$($id),*].len()] = [$(MuscleKind::$variant),*];
+
+            const TABLE: [ControlSpec; [$($id),*].len()] = [$(
+                ControlSpec {
+                    kind: MuscleKind::$variant,
+                    id: $id,
+                    display_name: $name,
+                    side: Side::$side,
+                    mirror: MuscleKind::$mirror,
+                    placed: Placed::$placed,
+                    generator: $generator,
+                }
+            ),*];
+        }
+    };
+}
+
+use Generator::Band;
+
+controls! {
     /// Frontalis, face's left.
-    FrontalisL,
+    FrontalisL = ("frontalis_l", "Frontalis L", Left, FrontalisR, Thesis,
+        Band(anatomy::frontalis)),
     /// Frontalis, face's right.
-    FrontalisR,
+    FrontalisR = ("frontalis_r", "Frontalis R", Right, FrontalisL, Thesis,
+        Band(anatomy::frontalis)),
     /// Levator labii superioris, face's left.
-    LevatorLabiiSuperiorisL,
+    LevatorLabiiSuperiorisL = ("levator_labii_superioris_l", "Levator labii superioris L",
+        Left, LevatorLabiiSuperiorisR, Thesis, Band(anatomy::levator_labii_superioris)),
     /// Levator labii superioris, face's right.
-    LevatorLabiiSuperiorisR,
+    LevatorLabiiSuperiorisR = ("levator_labii_superioris_r", "Levator labii superioris R",
+        Right, LevatorLabiiSuperiorisL, Thesis, Band(anatomy::levator_labii_superioris)),
     /// Zygomaticus major, face's left.
-    ZygomaticusMajorL,
+    ZygomaticusMajorL = ("zygomaticus_major_l", "Zygomaticus major L", Left,
+        ZygomaticusMajorR, Thesis, Band(anatomy::zygomaticus_major)),
     /// Zygomaticus major, face's right.
-    ZygomaticusMajorR,
+    ZygomaticusMajorR = ("zygomaticus_major_r", "Zygomaticus major R", Right,
+        ZygomaticusMajorL, Thesis, Band(anatomy::zygomaticus_major)),
     /// Mentalis, face's left.
-    MentalisL,
+    MentalisL = ("mentalis_l", "Mentalis L", Left, MentalisR, Thesis,
+        Band(anatomy::mentalis)),
     /// Mentalis, face's right.
-    MentalisR,
+    MentalisR = ("mentalis_r", "Mentalis R", Right, MentalisL, Thesis,
+        Band(anatomy::mentalis)),
     /// Depressor labii inferioris, face's left.
-    DepressorLabiiInferiorisL,
+    DepressorLabiiInferiorisL = ("depressor_labii_inferioris_l",
+        "Depressor labii inferioris L", Left, DepressorLabiiInferiorisR, Thesis,
+        Band(anatomy::depressor_labii_inferioris)),
     /// Depressor labii inferioris, face's right.
-    DepressorLabiiInferiorisR,
+    DepressorLabiiInferiorisR = ("depressor_labii_inferioris_r",
+        "Depressor labii inferioris R", Right, DepressorLabiiInferiorisL, Thesis,
+        Band(anatomy::depressor_labii_inferioris)),
 }
 
 impl MuscleKind {
-    /// All ten muscles in their canonical order (the order of sliders and basis columns).
-    pub const ALL: [MuscleKind; 10] = [
+    /// The ten muscles of the thesis, in its order: the only controls the thesis model places
+    /// (and the first ten rows of [`MuscleKind::ALL`]).
+    pub const THESIS: [MuscleKind; 10] = [
         MuscleKind::FrontalisL,
         MuscleKind::FrontalisR,
         MuscleKind::LevatorLabiiSuperiorisL,
@@ -60,37 +197,20 @@ impl MuscleKind {
         MuscleKind::DepressorLabiiInferiorisR,
     ];
 
+    /// This control's table row.
+    pub fn spec(self) -> &'static ControlSpec {
+        &MuscleKind::TABLE[self as usize]
+    }
+
     /// Stable snake_case identifier, used in files, the CLI (`--set zygomaticus_major_l=-0.8`)
     /// and glTF target names.
     pub fn id(self) -> &'static str {
-        match self {
-            MuscleKind::FrontalisL => "frontalis_l",
-            MuscleKind::FrontalisR => "frontalis_r",
-            MuscleKind::LevatorLabiiSuperiorisL => "levator_labii_superioris_l",
-            MuscleKind::LevatorLabiiSuperiorisR => "levator_labii_superioris_r",
-            MuscleKind::ZygomaticusMajorL => "zygomaticus_major_l",
-            MuscleKind::ZygomaticusMajorR => "zygomaticus_major_r",
-            MuscleKind::MentalisL => "mentalis_l",
-            MuscleKind::MentalisR => "mentalis_r",
-            MuscleKind::DepressorLabiiInferiorisL => "depressor_labii_inferioris_l",
-            MuscleKind::DepressorLabiiInferiorisR => "depressor_labii_inferioris_r",
-        }
+        self.spec().id
     }
 
-    /// Human-readable name as in the thesis, e.g. "Frontalis L".
+    /// Human-readable name, e.g. "Frontalis L".
     pub fn display_name(self) -> &'static str {
-        match self {
-            MuscleKind::FrontalisL => "Frontalis L",
-            MuscleKind::FrontalisR => "Frontalis R",
-            MuscleKind::LevatorLabiiSuperiorisL => "Levator labii superioris L",
-            MuscleKind::LevatorLabiiSuperiorisR => "Levator labii superioris R",
-            MuscleKind::ZygomaticusMajorL => "Zygomaticus major L",
-            MuscleKind::ZygomaticusMajorR => "Zygomaticus major R",
-            MuscleKind::MentalisL => "Mentalis L",
-            MuscleKind::MentalisR => "Mentalis R",
-            MuscleKind::DepressorLabiiInferiorisL => "Depressor labii inferioris L",
-            MuscleKind::DepressorLabiiInferiorisR => "Depressor labii inferioris R",
-        }
+        self.spec().display_name
     }
 
     /// Parses an identifier as returned by [`MuscleKind::id`] (case-insensitive).
@@ -100,23 +220,36 @@ impl MuscleKind {
             .find(|m| m.id().eq_ignore_ascii_case(id.trim()))
     }
 
-    /// The face side of this muscle.
+    /// The face side of this control.
     pub fn side(self) -> Side {
-        if (self as usize).is_multiple_of(2) {
-            Side::Left
-        } else {
-            Side::Right
-        }
+        self.spec().side
     }
 
-    /// The same muscle on the other side of the face.
+    /// The same control on the other side of the face (itself when unpaired).
     pub fn mirror(self) -> MuscleKind {
-        MuscleKind::ALL[(self as usize) ^ 1]
+        self.spec().mirror
     }
 
-    /// Position of this muscle in [`MuscleKind::ALL`].
+    /// Position of this control in [`MuscleKind::ALL`].
     pub fn index(self) -> usize {
         self as usize
+    }
+
+    /// Whether the thesis model places this control (one of [`MuscleKind::THESIS`]).
+    pub fn is_thesis(self) -> bool {
+        self.spec().placed == Placed::Thesis
+    }
+
+    /// How this control is placed and what it prescribes.
+    pub fn generator(self) -> Generator {
+        self.spec().generator
+    }
+
+    /// The muscle-band attachment function, if this control is a muscle band.
+    pub fn band(self) -> Option<fn(&Landmarks) -> Attachment> {
+        match self.generator() {
+            Generator::Band(f) => Some(f),
+        }
     }
 }
 
@@ -129,9 +262,36 @@ mod tests {
         for m in MuscleKind::ALL {
             assert_eq!(MuscleKind::from_id(m.id()), Some(m));
             assert_eq!(m.mirror().mirror(), m);
-            assert_ne!(m.side(), m.mirror().side());
+            assert_eq!(m.side().opposite(), m.mirror().side(), "{}", m.id());
+            assert_eq!(m.side() == Side::Center, m.mirror() == m, "{}", m.id());
             assert_eq!(MuscleKind::ALL[m.index()], m);
+            assert_eq!(m.spec().kind, m);
+            // Ids follow the side: `_l` left, `_r` right, neither when unpaired.
+            let suffix = match m.side() {
+                Side::Left => m.id().ends_with("_l"),
+                Side::Right => m.id().ends_with("_r"),
+                Side::Center => !m.id().ends_with("_l") && !m.id().ends_with("_r"),
+            };
+            assert!(suffix, "{} does not name its side", m.id());
         }
         assert_eq!(MuscleKind::from_id("nope"), None);
+    }
+
+    #[test]
+    fn ids_and_names_are_unique() {
+        for (i, a) in MuscleKind::ALL.iter().enumerate() {
+            for b in &MuscleKind::ALL[i + 1..] {
+                assert_ne!(a.id(), b.id());
+                assert!(!a.display_name().eq_ignore_ascii_case(b.display_name()));
+            }
+        }
+    }
+
+    #[test]
+    fn thesis_muscles_are_the_first_ten_rows() {
+        assert_eq!(&MuscleKind::ALL[..10], &MuscleKind::THESIS[..]);
+        for m in MuscleKind::ALL {
+            assert_eq!(m.is_thesis(), m.index() < 10, "{}", m.id());
+        }
     }
 }

@@ -22,7 +22,7 @@
 //!
 //! An edited muscle (e.g. from a thesis-format muscle file) keeps working in the anatomical
 //! model: its elements are the band (front chain on the skin, back chain in the deep layer);
-//! a standard muscle (its name is one of the ten) takes its origin and insertion from the
+//! a standard muscle (its name is one of the table's, [`crate::MuscleKind`]) takes its origin and insertion from the
 //! feature boxes, any other muscle from its chain's ends: the first element is the insertion,
 //! the last the origin (the thesis's start and end), with [`CUSTOM_HALF_WIDTH_MM`] and
 //! [`CUSTOM_MAX_STRAIN`].
@@ -257,7 +257,7 @@ pub fn muscle_attachment(
     muscle: &Muscle,
 ) -> Option<Attachment> {
     if let Some(kind) = muscle.kind {
-        return Some(attachment(kind, boxes));
+        return attachment(kind, boxes);
     }
     let chain = if muscle.front_chain.is_empty() {
         &muscle.back_chain

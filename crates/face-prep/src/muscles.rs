@@ -32,11 +32,13 @@ impl Muscle {
     }
 }
 
-/// The muscle-definer (start → end, canonical x-y) of a standard muscle, thesis Table 7.1.
-pub fn muscle_definer(kind: MuscleKind, b: &FeatureBoxes) -> (DVec2, DVec2) {
+/// The muscle-definer (start → end, canonical x-y) of one of the thesis's ten muscles, thesis
+/// Table 7.1 (`None` for any other control: the thesis model places only
+/// [`MuscleKind::THESIS`]).
+pub fn muscle_definer(kind: MuscleKind, b: &FeatureBoxes) -> Option<(DVec2, DVec2)> {
     use MuscleKind::*;
     let nose_mid_y = b.nose.center().y;
-    match kind {
+    Some(match kind {
         FrontalisL => (b.eye_l.c6(), DVec2::new(b.eye_l.c6().x, b.face.max.y)),
         FrontalisR => (b.eye_r.c7(), DVec2::new(b.eye_r.c7().x, b.face.max.y)),
         LevatorLabiiSuperiorisL => {
@@ -59,7 +61,9 @@ pub fn muscle_definer(kind: MuscleKind, b: &FeatureBoxes) -> (DVec2, DVec2) {
         }
         DepressorLabiiInferiorisL => (b.mouth.c5(), b.face.c5()),
         DepressorLabiiInferiorisR => (b.mouth.c4(), b.face.c4()),
-    }
+        #[allow(unreachable_patterns)] // the table grows beyond the thesis's ten
+        _ => return None,
+    })
 }
 
 /// Whether the muscle has a front chain only (thesis: the frontalis lies on the skull).
@@ -138,7 +142,7 @@ pub fn project_definer(
     (front, back)
 }
 
-/// Places the ten standard muscles (in [`MuscleKind::ALL`] order) from the boxes.
+/// Places the thesis's ten muscles (in [`MuscleKind::THESIS`] order) from the boxes.
 pub fn place_standard_muscles(
     shell: &Shell,
     boxes: &FeatureBoxes,
@@ -150,20 +154,20 @@ pub fn place_standard_muscles(
         .collect();
     let bvh = TriangleBvh::new(&tris);
     let skull: HashSet<u32> = skull.iter().copied().collect();
-    MuscleKind::ALL
+    MuscleKind::THESIS
         .iter()
-        .map(|&kind| {
-            let (s, e) = muscle_definer(kind, boxes);
+        .filter_map(|&kind| {
+            let (s, e) = muscle_definer(kind, boxes)?;
             let (front, mut back) = project_definer(shell, &bvh, &skull, s, e, spacing);
             if front_only(kind) {
                 back.clear();
             }
-            Muscle {
+            Some(Muscle {
                 name: kind.display_name().to_owned(),
                 kind: Some(kind),
                 front_chain: front,
                 back_chain: back,
-            }
+            })
         })
         .collect()
 }

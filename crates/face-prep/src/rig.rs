@@ -1,13 +1,12 @@
 //! The face rig: everything the BEM needs, built from one face mesh.
 
-use crate::anatomy::attachment;
 use crate::bvh::TriangleBvh;
 use crate::error::PrepError;
 use crate::face_mesh::FaceMesh;
 use crate::features::FeatureBoxes;
 use crate::muscle_kind::MuscleKind;
-use crate::muscle_model::{AnatomicalParams, MuscleModel, anatomical_pattern, place_band};
-use crate::muscles::{Muscle, muscle_pattern, place_standard_muscles, skull_elements};
+use crate::muscle_model::{AnatomicalParams, MuscleModel};
+use crate::muscles::{Muscle, place_standard_muscles, skull_elements};
 use crate::orient::{FaceLoops, canonical_frame, loop_centroid};
 use crate::shell::{ElementTag, Shell, ShellDims};
 use crate::topology;
@@ -144,7 +143,8 @@ pub struct FaceRig {
     /// front repair may have moved a few of them slightly ([`Shell::front_repair`] says how
     /// many and how far, e.g. for a report).
     pub shell: Shell,
-    /// The muscles; the standard ten come in [`MuscleKind::ALL`] order.
+    /// The muscles (controls): the thesis model places [`MuscleKind::THESIS`], the
+    /// anatomical model every control of [`MuscleKind::ALL`], in that order.
     pub muscles: Vec<Muscle>,
     /// Fixed skull elements, sorted, disjoint from every muscle chain.
     pub skull: Vec<u32>,
@@ -258,29 +258,14 @@ impl FaceRig {
                 let skull: HashSet<u32> = self.skull.iter().copied().collect();
                 MuscleKind::ALL
                     .iter()
-                    .map(|&kind| {
-                        let att = attachment(kind, &self.boxes);
-                        let (front_chain, back_chain) = place_band(
-                            &self.shell,
-                            &skull,
-                            &att,
-                            self.mm_per_unit(),
-                            &self.params.anatomical,
-                        );
-                        Muscle {
-                            name: kind.display_name().to_owned(),
-                            kind: Some(kind),
-                            front_chain,
-                            back_chain,
-                        }
-                    })
+                    .map(|&kind| self.place_control(kind, &skull))
                     .collect()
             }
         };
     }
 
-    /// The same rig with new feature boxes: the shell is kept; skull and the ten standard
-    /// muscles are recomputed from the boxes (custom muscles are dropped).
+    /// The same rig with new feature boxes: the shell is kept; skull and the standard
+    /// controls are recomputed from the boxes (custom muscles are dropped).
     pub fn rebuild_with_boxes(&self, boxes: FeatureBoxes) -> Result<FaceRig, PrepError> {
         boxes.check()?;
         let mut rig = self.clone();
@@ -368,20 +353,9 @@ impl FaceRig {
     /// Prescribed per-element displacement of muscle `muscle_index` at slider = +1 (canonical
     /// frame; see [`crate::muscles::muscle_pattern`]). Empty if the index is out of range.
     pub fn muscle_pattern(&self, muscle_index: usize) -> Vec<(u32, DVec3)> {
-        let Some(m) = self.muscles.get(muscle_index) else {
-            return Vec::new();
-        };
-        match self.params.muscle_model {
-            MuscleModel::Thesis => muscle_pattern(&self.shell, m),
-            MuscleModel::Anatomical => anatomical_pattern(
-                &self.shell,
-                &self.shell_bvh(),
-                &self.boxes,
-                &self.contour_xy(),
-                m,
-                self.mm_per_unit(),
-                &self.params.anatomical,
-            ),
+        match self.muscles.get(muscle_index) {
+            Some(m) => self.control_pattern(m),
+            None => Vec::new(),
         }
     }
 

@@ -32,37 +32,58 @@ impl Default for OverlayOptions {
     }
 }
 
-/// Name of the colour [`muscle_color`] gives muscle number `index` (shown in the legend, so it
-/// can be told apart without telling the hues apart).
-pub fn muscle_color_name(index: usize) -> &'static str {
-    const NAMES: [&str; 10] = [
-        "red", "blue", "green", "orange", "purple", "teal", "pink", "brown", "grey", "yellow",
-    ];
-    NAMES[index % NAMES.len()]
+/// Ten base hues and their names; [`muscle_color`] cycles through them, then through lighter,
+/// darker and paler shades of them, so the rig's own list of muscles (however long the control
+/// table grows) gets distinct colours with distinct names.
+const HUES: [(&str, [f32; 3]); 10] = [
+    ("red", [0.90, 0.10, 0.10]),
+    ("blue", [0.10, 0.45, 0.95]),
+    ("green", [0.10, 0.75, 0.20]),
+    ("orange", [0.95, 0.55, 0.05]),
+    ("purple", [0.60, 0.20, 0.85]),
+    ("teal", [0.05, 0.75, 0.75]),
+    ("pink", [0.95, 0.20, 0.65]),
+    ("brown", [0.55, 0.40, 0.10]),
+    ("grey", [0.35, 0.35, 0.35]),
+    ("yellow", [0.75, 0.75, 0.05]),
+];
+
+/// Shades applied to the base hues in turn: (name prefix, mix toward white, brightness).
+const SHADES: [(&str, f32, f32); 4] = [
+    ("", 0.0, 1.0),
+    ("light ", 0.5, 1.0),
+    ("dark ", 0.0, 0.55),
+    ("pale ", 0.75, 0.9),
+];
+
+/// Name of the colour [`muscle_color`] gives muscle number `index` of a rig's muscle list
+/// (shown in the legend, so it can be told apart without telling the hues apart). Distinct for
+/// every index: past the 40 named shades a number is appended.
+///
+/// ```
+/// use viewer::overlay::muscle_color_name;
+/// assert_eq!(muscle_color_name(0), "red");
+/// assert_eq!(muscle_color_name(11), "light blue");
+/// assert_eq!(muscle_color_name(40), "red 2");
+/// ```
+pub fn muscle_color_name(index: usize) -> String {
+    let (hue, _) = HUES[index % HUES.len()];
+    let (shade, _, _) = SHADES[(index / HUES.len()) % SHADES.len()];
+    let round = index / (HUES.len() * SHADES.len());
+    if round == 0 {
+        format!("{shade}{hue}")
+    } else {
+        format!("{shade}{hue} {}", round + 1)
+    }
 }
 
-/// Palette index of muscle number `index` of a rig's muscle list: the standard muscles keep
-/// their colour whatever their position in the list.
-pub fn muscle_color_index(index: usize, muscle: &face_prep::Muscle) -> usize {
-    muscle.kind.map_or(index, |k| k.index())
-}
-
-/// Colour of muscle number `index` (ten distinct hues, then repeating).
+/// Colour of muscle number `index` of a rig's muscle list: ten distinct hues, then their
+/// lighter, darker and paler shades ([`muscle_color_name`] names it).
 pub fn muscle_color(index: usize) -> [f32; 4] {
-    const PALETTE: [[f32; 3]; 10] = [
-        [0.90, 0.10, 0.10],
-        [0.10, 0.45, 0.95],
-        [0.10, 0.75, 0.20],
-        [0.95, 0.55, 0.05],
-        [0.60, 0.20, 0.85],
-        [0.05, 0.75, 0.75],
-        [0.95, 0.20, 0.65],
-        [0.55, 0.40, 0.10],
-        [0.35, 0.35, 0.35],
-        [0.75, 0.75, 0.05],
-    ];
-    let [r, g, b] = PALETTE[index % PALETTE.len()];
-    [r, g, b, 1.0]
+    let (_, [r, g, b]) = HUES[index % HUES.len()];
+    let (_, white, bright) = SHADES[(index / HUES.len()) % SHADES.len()];
+    let f = |c: f32| (c + (1.0 - c) * white) * bright;
+    [f(r), f(g), f(b), 1.0]
 }
 
 /// Element centroids and vertices of a rig, in the user's frame.
@@ -209,7 +230,7 @@ pub fn overlay_lines(
     }
     if options.muscles {
         for (i, m) in muscles.unwrap_or(&rig.muscles).iter().enumerate() {
-            let color = muscle_color(muscle_color_index(i, m));
+            let color = muscle_color(i);
             chain_lines(&mut out, rig, geo, &m.front_chain, color, 1.0, view_normal);
             if options.whole_shell {
                 chain_lines(&mut out, rig, geo, &m.back_chain, color, 0.5, -view_normal);

@@ -7,7 +7,7 @@ use eframe::egui;
 use super::dialogs::DialogPurpose;
 use super::{ExportKind, ViewerApp, muscle_label, preset_label};
 use crate::muscle_edit::insert_into_chain;
-use crate::overlay::{muscle_color, muscle_color_index, muscle_color_name};
+use crate::overlay::{muscle_color, muscle_color_name};
 
 impl ViewerApp {
     pub(super) fn toolbar(&mut self, ui: &mut egui::Ui) {
@@ -105,9 +105,8 @@ impl ViewerApp {
             .iter()
             .enumerate()
             .map(|(i, m)| {
-                let c = muscle_color_index(i, m);
-                let [r, g, b, _] = muscle_color(c).map(|x| (x * 255.0).round() as u8);
-                let name = format!("{}: {}", muscle_label(m), muscle_color_name(c));
+                let [r, g, b, _] = muscle_color(i).map(|x| (x * 255.0).round() as u8);
+                let name = format!("{}: {}", muscle_label(m), muscle_color_name(i));
                 (egui::Color32::from_rgb(r, g, b), name)
             })
             .collect();
