@@ -30,6 +30,7 @@ pub mod contact_sheet;
 mod control;
 pub mod describe;
 pub mod export;
+pub mod expression_sets;
 pub mod large_face;
 pub mod measure;
 pub mod open;

@@ -156,16 +156,85 @@ fn pose_writes_the_basis_pose_in_the_input_layout() {
 #[test]
 fn export_writes_valid_gltf() {
     let (dir, rig) = rigged();
+    let model = facebem::cache::load(rig).unwrap();
+    // ARKit and VRM names this rig can make, then 10 muscles x 2 + 8 presets.
+    let (named, _) = facebem::expression_sets::for_rig(Default::default(), model.muscle_ids());
+    let own = 2 * model.basis.muscle_count() + facebem::presets::ALL.len() - 1;
     for name in ["cli.glb", "cli.gltf"] {
         let path = dir.path().join(name);
         let out = facebem(&["export", s(rig), "--gltf", s(&path)]);
         assert!(out.status.success(), "{}", stderr(&out));
-        assert!(
-            stdout(&out).contains("28 morph targets"),
-            "{}",
-            stdout(&out)
-        );
+        let expected = format!("{} morph targets", named.len() + own);
+        assert!(stdout(&out).contains(&expected), "{}", stdout(&out));
+        assert!(stdout(&out).contains("ARKit: "), "{}", stdout(&out));
         support::assert_valid(&path);
+    }
+    // Only facebem's own names: the export before named sets.
+    let path = dir.path().join("own.glb");
+    let out = facebem(&["export", s(rig), "--gltf", s(&path), "--names", "facebem"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert!(
+        stdout(&out).contains(&format!("{own} morph targets")),
+        "{}",
+        stdout(&out)
+    );
+    let out = facebem(&["export", s(rig), "--gltf", s(&path), "--names", "blender"]);
+    assert!(!out.status.success());
+    assert!(
+        stderr(&out).contains("unknown name set"),
+        "{}",
+        stderr(&out)
+    );
+}
+
+#[test]
+fn pose_accepts_arkit_and_vrm_names() {
+    let (dir, rig) = rigged();
+    let model = facebem::cache::load(rig).unwrap();
+    let pose_of = |preset: &str, extra: &[&str]| {
+        let obj = dir.path().join(format!("{preset}.obj"));
+        let mut args = vec!["pose", s(rig), "--preset", preset, "-o", s(&obj)];
+        args.extend_from_slice(extra);
+        let out = facebem(&args);
+        assert!(out.status.success(), "{preset}: {}", stderr(&out));
+        let text = std::fs::read_to_string(&obj).unwrap();
+        (
+            face_prep::FaceMesh::from_obj_str(&text).unwrap().vertices,
+            out,
+        )
+    };
+    // mouthSmileLeft is the left zygomaticus fully contracted (case does not matter).
+    let (smile, _) = pose_of("mouthSmileLeft", &[]);
+    let mut sliders = vec![0.0; model.muscle_ids().len()];
+    sliders[model.basis.muscle_index("zygomaticus_major_l").unwrap()] = -1.0;
+    assert_eq!(smile, model.pose(&sliders).unwrap());
+    assert_eq!(pose_of("MOUTHSMILELEFT", &[]).0, smile);
+    // VRM's happy is facebem's happy.
+    let happy = facebem::presets::find("happy")
+        .unwrap()
+        .sliders_for(model.muscle_ids());
+    assert_eq!(pose_of("happy", &[]).0, model.pose(&happy).unwrap());
+    // A name whose controls the rig lacks entirely fails in one line naming them; one that has
+    // some of them is posed from those, with a warning.
+    let blink = facebem::expression_sets::find("blinkLeft").unwrap();
+    if blink.resolve(model.muscle_ids()).is_none() {
+        let out = facebem(&[
+            "pose",
+            s(rig),
+            "--preset",
+            "blinkLeft",
+            "-o",
+            s(&dir.path().join("b.obj")),
+        ]);
+        assert_one_line_error(&out, &["blinkLeft", "orbicularis_oculi_palpebral_l"]);
+    }
+    let aa = facebem::expression_sets::find("aa").unwrap();
+    if let Some(r) = aa.resolve(model.muscle_ids()) {
+        let (posed, out) = pose_of("aa", &[]);
+        assert_eq!(posed, model.pose(&r.sliders).unwrap());
+        for m in r.missing {
+            assert!(stderr(&out).contains(m), "{}", stderr(&out));
+        }
     }
 }
 

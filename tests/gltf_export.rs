@@ -38,12 +38,10 @@ fn grid_basis() -> MuscleBasis {
     }
 }
 
-fn check_file(path: &std::path::Path, basis: &MuscleBasis) {
-    support::assert_valid(path);
-    let (doc, buffers, _) = gltf::import(path).expect("gltf crate re-reads the export");
+/// `meshes[0].extras.targetNames` of a glTF document.
+fn target_names(doc: &gltf::Document) -> Vec<String> {
     let mesh = doc.meshes().next().expect("one mesh");
-    let names: Vec<String> = mesh
-        .extras()
+    mesh.extras()
         .as_ref()
         .map(|raw| {
             let v: serde_json::Value = serde_json::from_str(raw.get()).unwrap();
@@ -54,11 +52,37 @@ fn check_file(path: &std::path::Path, basis: &MuscleBasis) {
                 .map(|s| s.as_str().unwrap().to_string())
                 .collect()
         })
-        .unwrap_or_default();
-    // 2 muscles x 2 actions + 8 presets (neutral is the base mesh).
-    assert_eq!(names.len(), 2 * 2 + 8, "{names:?}");
-    assert_eq!(names[0], "zygomaticus_major_l_contract");
-    assert_eq!(names[3], "frontalis_r_relax");
+        .unwrap_or_default()
+}
+
+fn check_file(path: &std::path::Path, basis: &MuscleBasis) {
+    support::assert_valid(path);
+    let (doc, buffers, _) = gltf::import(path).expect("gltf crate re-reads the export");
+    let mesh = doc.meshes().next().expect("one mesh");
+    let names = target_names(&doc);
+    // The ARKit and VRM names the two muscles can make come first (ARKit: browDownRight,
+    // browInnerUp, browOuterUpRight, mouthSmileLeft; VRM: the five facebem presets, relaxed and
+    // ih), then 2 muscles x 2 actions + 8 presets (neutral is the base mesh).
+    let first_own = 4 + 7;
+    assert_eq!(names.len(), first_own + 2 * 2 + 8, "{names:?}");
+    assert_eq!(
+        names[..first_own],
+        [
+            "browDownRight",
+            "browInnerUp",
+            "browOuterUpRight",
+            "mouthSmileLeft",
+            "happy",
+            "angry",
+            "sad",
+            "relaxed",
+            "surprised",
+            "ih",
+            "neutral"
+        ]
+    );
+    assert_eq!(names[first_own], "zygomaticus_major_l_contract");
+    assert_eq!(names[first_own + 3], "frontalis_r_relax");
     assert!(names.contains(&"preset_happy".to_string()));
     let prim = mesh.primitives().next().unwrap();
     let reader = prim.reader(|b| Some(&buffers[b.index()]));
@@ -73,13 +97,18 @@ fn check_file(path: &std::path::Path, basis: &MuscleBasis) {
         .map(|(p, _, _)| p.unwrap().collect())
         .collect();
     assert_eq!(targets.len(), names.len());
-    // contract = -D, relax = +D, exactly (f32 of the f64 field).
+    // contract = -D, relax = +D, exactly (f32 of the f64 field); mouthSmileLeft is the left
+    // zygomaticus contracted; VRM's happy is facebem's happy preset.
+    let at = |name: &str| names.iter().position(|n| n == name).unwrap();
     for k in 0..2 {
         for (v, d) in basis.displacements[k].iter().enumerate() {
-            assert_eq!(targets[2 * k][v], (-*d).as_vec3().to_array());
-            assert_eq!(targets[2 * k + 1][v], d.as_vec3().to_array());
+            assert_eq!(targets[first_own + 2 * k][v], (-*d).as_vec3().to_array());
+            assert_eq!(targets[first_own + 2 * k + 1][v], d.as_vec3().to_array());
         }
     }
+    assert_eq!(targets[at("mouthSmileLeft")], targets[first_own]);
+    assert_eq!(targets[at("happy")], targets[at("preset_happy")]);
+    assert!(targets[at("neutral")].iter().all(|d| *d == [0.0; 3]));
     // The happy preset target equals the pose's displacement (f32 tolerance 1e-7 relative).
     let happy = facebem::presets::find("happy").unwrap();
     let posed = basis.pose(&happy.sliders_for(&basis.muscle_ids)).unwrap();
@@ -121,8 +150,13 @@ fn animation_gives_one_clip_per_expression_named_after_it() {
         .map(|a| a.name().unwrap_or_default().to_string())
         .collect();
     assert_eq!(clips, expressions);
-    let targets = 2 * 2 + expressions.len();
+    let names = target_names(&doc);
+    let targets = names.len();
     for (k, anim) in doc.animations().enumerate() {
+        let t = names
+            .iter()
+            .position(|n| *n == format!("preset_{}", expressions[k]))
+            .unwrap();
         let channel = anim.channels().next().unwrap();
         let reader = channel.reader(|b| Some(&buffers[b.index()]));
         let times: Vec<f32> = reader.read_inputs().unwrap().collect();
@@ -134,7 +168,7 @@ fn animation_gives_one_clip_per_expression_named_after_it() {
         // Neutral, then only this expression's target at 1, then neutral.
         assert_eq!(weights.len(), 3 * targets);
         for (i, w) in weights.iter().enumerate() {
-            let want = if i == targets + 4 + k { 1.0 } else { 0.0 };
+            let want = if i == targets + t { 1.0 } else { 0.0 };
             assert_eq!(*w, want, "clip {k} weight {i}");
         }
     }

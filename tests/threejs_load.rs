@@ -34,10 +34,18 @@ fn threejs_gltfloader_gets_a_face_sized_mesh_with_named_morph_targets() {
         .iter()
         .map(|n| n.as_str().unwrap())
         .collect();
+    let (named, _) = facebem::expression_sets::for_rig(Default::default(), model.muscle_ids());
     assert_eq!(
         names.len(),
-        2 * model.basis.muscle_count() + facebem::presets::ALL.len() - 1
+        named.len() + 2 * model.basis.muscle_count() + facebem::presets::ALL.len() - 1
     );
+    // morphTargetDictionary resolves the ARKit and VRM names, which come first.
+    for name in ["happy", "mouthSmileLeft", "mouthSmileRight", "neutral"] {
+        assert!(names.contains(&name), "{name}: {names:?}");
+    }
+    for (k, n) in named.iter().enumerate() {
+        assert_eq!(names[k], n.expression.name);
+    }
     for id in model.muscle_ids() {
         assert!(
             names.contains(&format!("{id}_contract").as_str()),

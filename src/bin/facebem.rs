@@ -4,9 +4,9 @@
 //! facebem rig face.obj -o face.rig [--muscles face.muscles]
 //! facebem info face.obj|face.rig
 //! facebem pose face.rig --preset happy --set zygomaticus_major_l=-0.8 -o out.obj
-//! facebem export face.rig --gltf out.glb
+//! facebem export face.rig --gltf out.glb [--names facebem|arkit|vrm|all]
 //! facebem muscles face.obj -o face.muscles
-//! facebem sheet face.rig -o sheet.png [--only muscles|presets]
+//! facebem sheet face.rig -o sheet.png [--only muscles|presets|arkit|vrm]
 //! ```
 //!
 //! Errors print one line naming the problem and exit with status 1 (2 for usage errors).
@@ -18,6 +18,7 @@ use std::time::Duration;
 use anyhow::{Context, Result, anyhow, bail};
 use clap::{Args, Parser, Subcommand};
 use face_prep::RigParams;
+use facebem::expression_sets::{self, NameSet, NameSets};
 use facebem::large_face::LargeFaceParams;
 use facebem::open::Opened;
 use facebem::{Control, FaceModel, PipelineParams, build_face_model, cache, presets};
@@ -80,8 +81,9 @@ enum Command {
         /// Slider value `muscle_id=value`, value in [-1, 1], negative contracts. Repeatable.
         #[arg(long = "set", value_name = "ID=VALUE")]
         sets: Vec<String>,
-        /// Expression preset applied first (neutral, happy, smile, laugh, sad, angry, surprised,
-        /// disgust, fear).
+        /// Expression applied first: a facebem preset (neutral, happy, smile, laugh, sad, angry,
+        /// surprised, disgust, fear), an ARKit blendshape name (mouthSmileLeft, jawOpen, …) or a
+        /// VRM 1.0 preset (relaxed, aa, ih, ou, ee, oh, blink, blinkLeft, blinkRight, …).
         #[arg(long)]
         preset: Option<String>,
         /// Output OBJ.
@@ -100,6 +102,11 @@ enum Command {
         /// Add one animation clip per preset, named after it (neutral → preset → neutral).
         #[arg(long)]
         animation: bool,
+        /// Morph target names to write: `arkit` (ARKit blendshapes), `vrm` (VRM 1.0 presets),
+        /// `facebem` (each muscle's `_contract`/`_relax` and `preset_<name>`), `all`, or a
+        /// comma-separated list. ARKit and VRM targets come first.
+        #[arg(long, default_value = "all", value_parser = NameSets::parse)]
+        names: NameSets,
     },
     /// Write the automatically placed muscles of a face as a muscle file (thesis format).
     Muscles {
@@ -121,8 +128,9 @@ struct SheetArgs {
     /// Output PNG.
     #[arg(short, long)]
     output: PathBuf,
-    /// Only the muscles (with neutral) or only the presets.
-    #[arg(long, value_parser = ["muscles", "presets"])]
+    /// Only the muscles (with neutral), only the presets, or one page of named expressions: the
+    /// ARKit blendshapes or the VRM 1.0 presets the rig can make.
+    #[arg(long, value_parser = ["muscles", "presets", "arkit", "vrm"])]
     only: Option<String>,
 }
 
@@ -227,7 +235,8 @@ fn run(cli: Cli) -> Result<()> {
             rig,
             gltf,
             animation,
-        } => export(&rig, &gltf, animation),
+            names,
+        } => export(&rig, &gltf, animation, names),
         Command::Muscles { face, output } => muscles(&face, &output),
         Command::Sheet(args) => sheet(&args),
     }
@@ -240,6 +249,17 @@ fn presets_help() -> String {
         out.push_str(&format!(
             "  {:<10} {:<24} {}\n",
             p.name, p.action_units, p.description
+        ));
+    }
+    for set in [NameSet::Arkit, NameSet::Vrm] {
+        let names: Vec<&str> = expression_sets::of_set(set)
+            .iter()
+            .map(|e| e.name)
+            .collect();
+        out.push_str(&format!(
+            "{} names (also accepted by --preset; defined in facebem::expression_sets):\n  {}\n",
+            set.display_name(),
+            names.join(" ")
         ));
     }
     out
@@ -376,16 +396,15 @@ fn parse_set(s: &str) -> Result<(String, f64)> {
 fn pose(rig: &Path, sets: &[String], preset: Option<&str>, output: &Path) -> Result<()> {
     facebem::check_output(output, &[rig], &["obj"], "a pose (OBJ)")?;
     let parsed: Vec<(String, f64)> = sets.iter().map(|s| parse_set(s)).collect::<Result<_>>()?;
-    let preset = preset
-        .map(|name| {
-            presets::find(name).ok_or_else(|| {
-                anyhow!(
-                    "unknown preset {name:?} (known: {})",
-                    presets::names().join(", ")
-                )
-            })
-        })
-        .transpose()?;
+    if let Some(name) = preset
+        && presets::find(name).is_none()
+        && expression_sets::find(name).is_none()
+    {
+        bail!(
+            "unknown preset {name:?} (known: {}, or an ARKit or VRM 1.0 name, see --help)",
+            presets::names().join(", ")
+        );
+    }
     let opened = open(rig)?;
     // Unknown muscle names are found before a face mesh's rig is computed.
     let known: Vec<String> = match &opened {
@@ -400,7 +419,17 @@ fn pose(rig: &Path, sets: &[String], preset: Option<&str>, output: &Path) -> Res
     }
     let model = model_from_opened(rig, opened)?;
     let ids = model.muscle_ids().to_vec();
-    let mut sliders = preset.map_or_else(|| vec![0.0; ids.len()], |p| p.sliders_for(&ids));
+    let mut sliders = vec![0.0; ids.len()];
+    if let Some(name) = preset {
+        let (values, missing) = expression_sets::sliders_for_name(name, &ids)?;
+        if !missing.is_empty() {
+            eprintln!(
+                "warning: {name}: this rig has no {}; posed from its other controls",
+                missing.join(", ")
+            );
+        }
+        sliders = values;
+    }
     for (id, value) in parsed {
         let k = model
             .basis
@@ -417,19 +446,56 @@ fn pose(rig: &Path, sets: &[String], preset: Option<&str>, output: &Path) -> Res
     Ok(())
 }
 
-fn export(rig: &Path, gltf: &Path, animation: bool) -> Result<()> {
+fn export(rig: &Path, gltf: &Path, animation: bool, names: NameSets) -> Result<()> {
     facebem::check_output(gltf, &[rig], &["glb", "gltf"], "a glTF export")?;
     let model = model_from(rig)?;
     let params = facebem::export::GltfParams {
         animation,
+        names,
         ..Default::default()
     };
     model.write_gltf(gltf, &params)?;
-    println!(
-        "{}: {} morph targets",
-        gltf.display(),
+    let (made, left_out) = expression_sets::for_rig(names, model.muscle_ids());
+    let own = if names.facebem {
         2 * model.basis.muscle_count() + presets::ALL.len() - 1
-    );
+    } else {
+        0
+    };
+    println!("{}: {} morph targets", gltf.display(), made.len() + own);
+    for set in [NameSet::Arkit, NameSet::Vrm] {
+        if !names.contains(set) {
+            continue;
+        }
+        let count = made.iter().filter(|m| m.expression.set == set).count();
+        let partial: Vec<&str> = made
+            .iter()
+            .filter(|m| m.expression.set == set && !m.resolved.missing.is_empty())
+            .map(|m| m.expression.name)
+            .collect();
+        let missing: Vec<&str> = left_out
+            .iter()
+            .filter(|(e, _)| e.set == set)
+            .map(|(e, _)| e.name)
+            .collect();
+        println!(
+            "  {}: {count} of {} names ({} not modelled: no eyeballs/tongue)",
+            set.display_name(),
+            set.standard_size(),
+            set.standard_size() - expression_sets::of_set(set).len()
+        );
+        if !partial.is_empty() {
+            println!(
+                "    from only some of their controls: {}",
+                partial.join(" ")
+            );
+        }
+        if !missing.is_empty() {
+            println!(
+                "    left out, their controls are not in this rig: {}",
+                missing.join(" ")
+            );
+        }
+    }
     Ok(())
 }
 
@@ -457,9 +523,29 @@ fn sheet(args: &SheetArgs) -> Result<()> {
     let selection = match args.only.as_deref() {
         Some("muscles") => Selection::Muscles,
         Some("presets") => Selection::Presets,
+        Some("arkit") => Selection::Named(NameSet::Arkit),
+        Some("vrm") => Selection::Named(NameSet::Vrm),
         _ => Selection::All,
     };
     let cells = contact_sheet::standard_cells(&model, selection);
+    if let Selection::Named(set) = selection {
+        let (_, left_out) = expression_sets::for_rig(
+            NameSets {
+                facebem: false,
+                arkit: set == NameSet::Arkit,
+                vrm: set == NameSet::Vrm,
+            },
+            model.muscle_ids(),
+        );
+        if !left_out.is_empty() {
+            let names: Vec<&str> = left_out.iter().map(|(e, _)| e.name).collect();
+            println!(
+                "{} names left out (their controls are not in this rig): {}",
+                set.display_name(),
+                names.join(" ")
+            );
+        }
+    }
     let name = args.rig.file_name().map_or_else(
         || args.rig.display().to_string(),
         |n| n.to_string_lossy().into_owned(),
@@ -470,8 +556,17 @@ fn sheet(args: &SheetArgs) -> Result<()> {
     } else {
         ""
     };
+    let page = match selection {
+        Selection::Named(set) => format!(
+            "  {} names: {} of {}",
+            set.display_name(),
+            cells.len(),
+            set.standard_size()
+        ),
+        _ => String::new(),
+    };
     let opts = SheetOptions {
-        title: format!("{name}  (unit: {unit}{detected})"),
+        title: format!("{name}  (unit: {unit}{detected}){page}"),
         ..SheetOptions::default()
     };
     let start = std::time::Instant::now();

@@ -18,7 +18,11 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 //!
-//! Command line: `facebem sheet face.rig -o sheet.png [--only muscles|presets]`.
+//! A page per named expression set ([`Selection::Named`]): the ARKit blendshapes or the VRM 1.0
+//! presets the rig can make ([`crate::expression_sets`]), each captioned with its FACS action
+//! units.
+//!
+//! Command line: `facebem sheet face.rig -o sheet.png [--only muscles|presets|arkit|vrm]`.
 
 mod camera;
 pub mod heat;
@@ -32,6 +36,7 @@ use std::path::Path;
 use glam::DVec3;
 use rayon::prelude::*;
 
+use crate::expression_sets::{self, NameSet, NameSets};
 use crate::{FaceModel, PoseError, WriteError, presets};
 
 pub use camera::{Camera, View};
@@ -76,6 +81,9 @@ pub enum Selection {
     Muscles,
     /// Every preset, neutral first.
     Presets,
+    /// The named expressions of one standard (ARKit or VRM 1.0) the rig can make, in the
+    /// standard's order ([`named_cells`]).
+    Named(NameSet),
 }
 
 /// How a sheet is drawn.
@@ -184,9 +192,33 @@ pub fn preset_cells(model: &FaceModel) -> Vec<SheetCell> {
         .collect()
 }
 
+/// One cell per named expression of `set` the rig can make ([`expression_sets::for_rig`]),
+/// captioned with its FACS action units; one made from only some of its controls says
+/// "partial". Names the rig cannot make at all are not drawn.
+pub fn named_cells(model: &FaceModel, set: NameSet) -> Vec<SheetCell> {
+    let sets = NameSets {
+        facebem: false,
+        arkit: set == NameSet::Arkit,
+        vrm: set == NameSet::Vrm,
+    };
+    let (made, _) = expression_sets::for_rig(sets, model.muscle_ids());
+    made.into_iter()
+        .map(|m| {
+            let e = m.expression;
+            let caption = if m.resolved.missing.is_empty() {
+                e.action_units().to_string()
+            } else {
+                format!("partial: {}", e.action_units())
+            };
+            SheetCell::new(e.name, caption, m.resolved.sliders)
+        })
+        .collect()
+}
+
 /// The cells of the standard sheet: see [`Selection`].
 pub fn standard_cells(model: &FaceModel, selection: Selection) -> Vec<SheetCell> {
     match selection {
+        Selection::Named(set) => named_cells(model, set),
         Selection::Presets => preset_cells(model),
         Selection::Muscles => {
             let mut cells = vec![neutral_cell(model)];

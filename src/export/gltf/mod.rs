@@ -2,10 +2,21 @@
 //!
 //! The file holds the user's neutral face — in the user's own vertex order with the input's
 //! texture coordinates and normals where it had them ([`ExportLayout`]), positions in metres
-//! (glTF's unit: input positions × [`GltfParams::metres_per_unit`]) — and, as morph targets:
-//! `<muscle id>_contract` (slider −1) and `<muscle id>_relax` (slider +1) for every muscle, then
-//! `preset_<name>` for every expression preset except `neutral` (the base mesh is neutral).
-//! Target names are listed in `mesh.extras.targetNames`. Every morph weight in [0, 1]
+//! (glTF's unit: input positions × [`GltfParams::metres_per_unit`]) — and, as morph targets, in
+//! this order ([`GltfParams::names`] picks the sets, default all):
+//!
+//! 1. the ARKit blendshapes the rig can make, by their ARKit names (`mouthSmileLeft`, …), then
+//!    the VRM 1.0 presets (`happy`, `aa`, `blinkLeft`, …, `neutral` as a zero target) — see
+//!    [`crate::expression_sets`]. Names whose controls the rig lacks entirely are left out and
+//!    listed with the reason in `mesh.extras.leftOutTargets`; names made from only some of
+//!    their controls are listed with the missing ones in `mesh.extras.partialTargets`;
+//! 2. facebem's own: `<muscle id>_contract` (slider −1) and `<muscle id>_relax` (slider +1) for
+//!    every muscle, then `preset_<name>` for every expression preset except `neutral` (the base
+//!    mesh is neutral).
+//!
+//! Names never repeat (ARKit and VRM names have no `_`, facebem's all have one). Target names
+//! are listed in `mesh.extras.targetNames` (three.js's `morphTargetDictionary` reads them, so
+//! `morphTargetDictionary['happy']` is the VRM `happy` target). Every morph weight in [0, 1]
 //! reproduces the facebem pose exactly for the positions (linear basis): weight `w` on
 //! `<id>_contract` equals slider `−w`. NORMAL deltas are the change of the area-weighted vertex
 //! normal at full weight (normals are not linear; this is the usual approximation). All
@@ -15,8 +26,9 @@
 //! double-sided: the face is an open surface), for the user to replace. `asset.copyright`
 //! carries the source's attribution when it is known ([`super::attribution`]), `asset.extras`
 //! its licence, the input's OBJ header and the unit conversion. With
-//! [`GltfParams::animation`], each expression gets its own animation clip named after it
-//! (`happy`, `sad`, …): neutral → expression → neutral.
+//! [`GltfParams::animation`], each facebem preset gets its own animation clip named after it
+//! (`happy`, `sad`, …): neutral → expression → neutral (the VRM expressions instead, when
+//! facebem's own names are not exported).
 
 mod buffer;
 
@@ -25,6 +37,7 @@ use serde_json::{Map, Value, json};
 
 use super::layout::ExportLayout;
 use crate::MuscleBasis;
+use crate::expression_sets::{self, NameSet, NameSets};
 use crate::presets::Preset;
 use buffer::{Builder, base64, glb};
 
@@ -63,6 +76,9 @@ pub struct GltfParams {
     pub seconds_per_keyframe: f32,
     /// Presets to add as morph targets (and as clips); `neutral` is skipped.
     pub presets: Vec<Preset>,
+    /// Which name sets become morph targets: ARKit, VRM (first, in that order) and facebem's
+    /// own muscle and preset targets.
+    pub names: NameSets,
     /// Metres per unit of the input positions (glTF's unit is the metre): 0.01 for a face in
     /// centimetres. [`crate::FaceModel::write_gltf`] sets it from the rig's length unit.
     pub metres_per_unit: f64,
@@ -79,6 +95,7 @@ impl Default for GltfParams {
             animation: false,
             seconds_per_keyframe: 1.0,
             presets: crate::presets::ALL.to_vec(),
+            names: NameSets::ALL,
             metres_per_unit: 1.0,
             copyright: None,
             asset_extras: Map::new(),
@@ -134,6 +151,9 @@ pub enum GltfExportError {
     /// The export layout does not fit the basis.
     #[error("the export layout does not fit the mesh: {0}")]
     Layout(String),
+    /// Two morph targets would have the same name (e.g. a muscle file naming two muscles alike).
+    #[error("two morph targets are named {0:?}")]
+    DuplicateTarget(String),
 }
 
 /// Builds the glTF file (bytes of a `.glb`, or UTF-8 JSON of a `.gltf`) for `basis`, with its
@@ -200,25 +220,66 @@ pub fn export_gltf_layout(
     let indices = b.indices_accessor(&layout.triangles);
 
     // Morph targets: (name, welded position deltas at weight 1).
-    let mut targets: Vec<(String, Vec<DVec3>)> = Vec::new();
-    for (id, field) in basis.muscle_ids.iter().zip(&basis.displacements) {
-        targets.push((
-            format!("{id}_contract"),
-            field.iter().map(|d| -*d).collect(),
-        ));
-        targets.push((format!("{id}_relax"), field.clone()));
-    }
-    let mut preset_targets = Vec::new();
-    for preset in params.presets.iter().filter(|p| p.name != "neutral") {
-        let sliders = preset.sliders_for(&basis.muscle_ids);
+    let field_of = |sliders: &[f64]| -> Vec<DVec3> {
         let mut delta = vec![DVec3::ZERO; n];
-        for (field, &s) in basis.displacements.iter().zip(&sliders) {
-            for (d, f) in delta.iter_mut().zip(field) {
-                *d += s * *f;
+        for (field, &s) in basis.displacements.iter().zip(sliders) {
+            if s != 0.0 {
+                for (d, f) in delta.iter_mut().zip(field) {
+                    *d += s * *f;
+                }
             }
         }
-        preset_targets.push((preset.name, targets.len()));
-        targets.push((format!("preset_{}", preset.name), delta));
+        delta
+    };
+    let mut targets: Vec<(String, Vec<DVec3>)> = Vec::new();
+    // Animation clips: (clip name, target index).
+    let mut clip_targets: Vec<(String, usize)> = Vec::new();
+    let (named, left_out) = expression_sets::for_rig(params.names, &basis.muscle_ids);
+    let mut partial = Map::new();
+    for r in &named {
+        let e = r.expression;
+        if !r.resolved.missing.is_empty() {
+            partial.insert(e.name.into(), json!(r.resolved.missing));
+        }
+        if e.set == NameSet::Vrm && !params.names.facebem && e.name != "neutral" {
+            clip_targets.push((e.name.to_string(), targets.len()));
+        }
+        targets.push((e.name.to_string(), field_of(&r.resolved.sliders)));
+    }
+    let mut left_out_json = Map::new();
+    for (e, controls) in &left_out {
+        left_out_json.insert(
+            e.name.into(),
+            json!(format!("controls not in this rig: {}", controls.join(", "))),
+        );
+    }
+    for (name, why) in expression_sets::NOT_MODELLED {
+        let set = if expression_sets::arkit::NAMES.contains(&name) {
+            NameSet::Arkit
+        } else {
+            NameSet::Vrm
+        };
+        if params.names.contains(set) {
+            left_out_json.insert(name.into(), json!(format!("not modelled: {why}")));
+        }
+    }
+    if params.names.facebem {
+        for (id, field) in basis.muscle_ids.iter().zip(&basis.displacements) {
+            targets.push((
+                format!("{id}_contract"),
+                field.iter().map(|d| -*d).collect(),
+            ));
+            targets.push((format!("{id}_relax"), field.clone()));
+        }
+        for preset in params.presets.iter().filter(|p| p.name != "neutral") {
+            let sliders = preset.sliders_for(&basis.muscle_ids);
+            clip_targets.push((preset.name.to_string(), targets.len()));
+            targets.push((format!("preset_{}", preset.name), field_of(&sliders)));
+        }
+    }
+    let mut seen = std::collections::HashSet::new();
+    if let Some((name, _)) = targets.iter().find(|(name, _)| !seen.insert(name.as_str())) {
+        return Err(GltfExportError::DuplicateTarget(name.clone()));
     }
 
     let mut target_json = Vec::with_capacity(targets.len());
@@ -241,6 +302,12 @@ pub fn export_gltf_layout(
     let names: Vec<&str> = targets.iter().map(|(n, _)| n.as_str()).collect();
 
     let mut extras = json!({ "targetNames": names });
+    if !left_out_json.is_empty() {
+        extras["leftOutTargets"] = Value::Object(left_out_json);
+    }
+    if !partial.is_empty() {
+        extras["partialTargets"] = Value::Object(partial);
+    }
     if layout.len() > layout.input_count {
         extras["seamCopyOf"] = json!(&layout.input_index[layout.input_count..]);
     }
@@ -275,19 +342,23 @@ pub fn export_gltf_layout(
                 "indices": indices,
                 "material": 0,
                 "mode": 4,
-                "targets": target_json,
             }],
-            "weights": vec![0.0; targets.len()],
             "extras": extras,
         }],
     });
+    // glTF requires at least one target when `targets` is present.
+    if !targets.is_empty() {
+        root["meshes"][0]["primitives"][0]["targets"] = Value::Array(target_json);
+        root["meshes"][0]["weights"] = json!(vec![0.0; targets.len()]);
+    }
 
-    if params.animation && !preset_targets.is_empty() {
+    if params.animation && !clip_targets.is_empty() {
         // One clip per preset: neutral, the preset at full weight, neutral.
         let s = params.seconds_per_keyframe;
         let input = b.scalar_accessor(&[0.0, s, 2.0 * s], true);
         let mut clips = Vec::new();
-        for &(name, t) in &preset_targets {
+        for (name, t) in &clip_targets {
+            let t = *t;
             let mut weights = vec![0.0f32; 3 * targets.len()];
             weights[targets.len() + t] = 1.0;
             let output = b.scalar_accessor(&weights, false);

@@ -1,0 +1,286 @@
+//! ARKit- and VRM-named expressions on real faces: the GLB holds exactly the names the rig's
+//! controls can make (first, in the standards' order, validator clean), each target is its
+//! slider combination, the left-out names are listed with the reason, and "Left" is the
+//! subject's own left (+x in the canonical frame) as ARKit and VRM define it.
+//!
+//! The expected counts follow from which controls the rig has, so they tighten by themselves as
+//! jaw, eyelid and further muscle controls land; with every agreed control the GLB must hold 43
+//! ARKit and 14 VRM names (the target).
+
+mod support;
+
+use std::sync::OnceLock;
+
+use facebem::expression_sets::{self, AGREED_CONTROL_IDS, NameSet, NameSets, arkit, vrm};
+use facebem::measure::FaceLandmarks;
+use facebem::{Control, FaceModel, PipelineParams, build_face_model};
+use glam::DVec3;
+
+static MODELS: [OnceLock<FaceModel>; 2] = [const { OnceLock::new() }; 2];
+
+/// The model of bundled face `face` (0: MediaPipe, 1: ICT 2500), with its OBJ layout.
+fn model(face: usize) -> &'static FaceModel {
+    MODELS[face].get_or_init(|| {
+        let (mesh, obj) = facebem::open::read_face(&support::asset(support::FACES[face])).unwrap();
+        let mut m = build_face_model(&mesh, &PipelineParams::default(), &Control::new()).unwrap();
+        m.obj_source = obj;
+        m
+    })
+}
+
+/// Whether the rig has at least one control of `e` (or `e` needs none).
+fn makeable(e: &expression_sets::NamedExpression, ids: &[String]) -> bool {
+    let controls = e.controls();
+    controls.is_empty() || controls.iter().any(|c| ids.iter().any(|i| i == c))
+}
+
+fn extras(doc: &gltf::Document) -> serde_json::Value {
+    let mesh = doc.meshes().next().unwrap();
+    serde_json::from_str(mesh.extras().as_ref().unwrap().get()).unwrap()
+}
+
+#[test]
+fn glb_holds_the_arkit_and_vrm_names_the_rig_can_make_first() {
+    let m = model(0);
+    let ids = m.muscle_ids();
+    let dir = tempfile::tempdir().unwrap();
+    let glb = dir.path().join("face.glb");
+    m.write_gltf(&glb, &Default::default()).unwrap();
+    support::assert_valid(&glb);
+    let (doc, buffers, _) = gltf::import(&glb).unwrap();
+    let x = extras(&doc);
+    let names: Vec<&str> = x["targetNames"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|n| n.as_str().unwrap())
+        .collect();
+
+    // Expected, from the tables and the rig's controls alone.
+    let expect_arkit: Vec<&str> = arkit::EXPRESSIONS
+        .iter()
+        .filter(|e| makeable(e, ids))
+        .map(|e| e.name)
+        .collect();
+    let expect_vrm: Vec<&str> = vrm::EXPRESSIONS
+        .iter()
+        .filter(|e| makeable(e, ids))
+        .map(|e| e.name)
+        .collect();
+    let got_arkit: Vec<&str> = names
+        .iter()
+        .copied()
+        .filter(|n| arkit::NAMES.contains(n))
+        .collect();
+    let got_vrm: Vec<&str> = names
+        .iter()
+        .copied()
+        .filter(|n| vrm::NAMES.contains(n))
+        .collect();
+    println!(
+        "{}: {} ARKit-named and {} VRM-named targets of {} in all",
+        support::FACES[0],
+        got_arkit.len(),
+        got_vrm.len(),
+        names.len()
+    );
+    assert_eq!(got_arkit, expect_arkit);
+    assert_eq!(got_vrm, expect_vrm);
+    // ARKit first, then VRM, then facebem's own (every one of which has a `_`).
+    let first_own = got_arkit.len() + got_vrm.len();
+    assert_eq!(names[..got_arkit.len()], got_arkit[..]);
+    assert_eq!(names[got_arkit.len()..first_own], got_vrm[..]);
+    assert!(names[first_own..].iter().all(|n| n.contains('_')));
+    let mut unique = names.clone();
+    unique.sort_unstable();
+    unique.dedup();
+    assert_eq!(unique.len(), names.len(), "duplicate target names");
+    // The ten thesis muscles alone make 17 ARKit and 9 VRM names; more controls, more names.
+    assert!(got_arkit.len() >= 17 && got_vrm.len() >= 9);
+    if AGREED_CONTROL_IDS
+        .iter()
+        .all(|c| ids.iter().any(|i| i == c))
+    {
+        assert!(got_arkit.len() >= 43 && got_vrm.len() == 14);
+    }
+
+    // Every other name of the 52 + 18 is listed as left out, with the reason.
+    let left_out = x["leftOutTargets"].as_object().unwrap();
+    for n in arkit::NAMES.iter().chain(&vrm::NAMES) {
+        assert_eq!(
+            names.contains(n),
+            !left_out.contains_key(*n),
+            "{n} must be exported or listed as left out"
+        );
+    }
+    assert!(
+        left_out["eyeLookUpLeft"]
+            .as_str()
+            .unwrap()
+            .contains("no eyeballs")
+    );
+    // Partial ones name their missing controls.
+    for (name, missing) in x["partialTargets"].as_object().into_iter().flatten() {
+        let e = expression_sets::find(name).unwrap();
+        for c in missing.as_array().unwrap() {
+            let c = c.as_str().unwrap();
+            assert!(e.controls().contains(&c) && !ids.iter().any(|i| i == c));
+        }
+    }
+
+    // Each named target is its slider combination's displacement, in metres (f32).
+    let prim = doc.meshes().next().unwrap().primitives().next().unwrap();
+    let reader = prim.reader(|b| Some(&buffers[b.index()]));
+    let targets: Vec<Vec<[f32; 3]>> = reader
+        .read_morph_targets()
+        .map(|(p, _, _)| p.unwrap().collect())
+        .collect();
+    let metres = m.metres_per_unit();
+    for (k, name) in names[..first_own].iter().enumerate() {
+        let r = expression_sets::find(name).unwrap().resolve(ids).unwrap();
+        let posed = m.pose(&r.sliders).unwrap();
+        for (i, w) in m.mesh.input_to_vertex.iter().enumerate() {
+            let d = w.map_or(DVec3::ZERO, |w| {
+                (posed[w as usize] - m.mesh.vertices[w as usize]) * metres
+            });
+            let got = glam::Vec3::from(targets[k][i]).as_dvec3();
+            assert!((got - d).length() < 1e-7, "{name} vertex {i}: {got} vs {d}");
+        }
+    }
+}
+
+#[test]
+fn names_option_picks_the_sets() {
+    let m = model(0);
+    let dir = tempfile::tempdir().unwrap();
+    for (names, set) in [("arkit", NameSet::Arkit), ("vrm", NameSet::Vrm)] {
+        let glb = dir.path().join(format!("{names}.glb"));
+        let params = facebem::export::GltfParams {
+            names: NameSets::parse(names).unwrap(),
+            animation: true,
+            ..Default::default()
+        };
+        m.write_gltf(&glb, &params).unwrap();
+        support::assert_valid(&glb);
+        let (doc, _, _) = gltf::import(&glb).unwrap();
+        let x = extras(&doc);
+        let got: Vec<&str> = x["targetNames"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|n| n.as_str().unwrap())
+            .collect();
+        let expected: Vec<&str> = expression_sets::of_set(set)
+            .iter()
+            .filter(|e| makeable(e, m.muscle_ids()))
+            .map(|e| e.name)
+            .collect();
+        assert_eq!(got, expected);
+        // Without facebem's presets the clips are the VRM expressions (none for ARKit).
+        let clips: Vec<String> = doc
+            .animations()
+            .map(|a| a.name().unwrap_or_default().to_string())
+            .collect();
+        let want: Vec<&str> = if set == NameSet::Vrm {
+            expected
+                .iter()
+                .copied()
+                .filter(|n| *n != "neutral")
+                .collect()
+        } else {
+            vec![]
+        };
+        assert_eq!(clips, want);
+    }
+}
+
+/// Canonical displacement, mm, of vertex `v` for a named expression at full weight.
+fn motion_mm(m: &FaceModel, lm: &FaceLandmarks, name: &str, v: u32) -> Option<DVec3> {
+    let r = expression_sets::find(name)?.resolve(m.muscle_ids())?;
+    let posed = m.pose(&r.sliders).unwrap();
+    Some(lm.canonical_mm(posed[v as usize] - m.mesh.vertices[v as usize]))
+}
+
+/// ARKit's and VRM's "Left" is the subject's own left: facebem's `_l`, +x in the canonical
+/// frame. On real faces, `mouthSmileLeft` moves the +x mouth corner far more than the −x one,
+/// `browOuterUpLeft` the +x brow; the Right names the other way round. Where the rig has the
+/// controls, `jawLeft` moves the chin toward +x and `eyeBlinkLeft`/`blinkLeft` close the +x eye.
+fn left_is_the_subjects_left(face: usize) {
+    let m = model(face);
+    let lm = FaceLandmarks::of(m).unwrap();
+    let pairs = [
+        (
+            "mouthSmileLeft",
+            "mouthSmileRight",
+            lm.mouth_corner_l,
+            lm.mouth_corner_r,
+        ),
+        ("browOuterUpLeft", "browOuterUpRight", lm.brow_l, lm.brow_r),
+    ];
+    for (left, right, v_l, v_r) in pairs {
+        let on_l = motion_mm(m, &lm, left, v_l).unwrap().length();
+        let on_r = motion_mm(m, &lm, left, v_r).unwrap().length();
+        println!("{left}: +x landmark {on_l:.2} mm, -x landmark {on_r:.2} mm");
+        assert!(on_l > 1.0 && on_l > 4.0 * on_r, "{left}: {on_l} vs {on_r}");
+        let on_r2 = motion_mm(m, &lm, right, v_r).unwrap().length();
+        let on_l2 = motion_mm(m, &lm, right, v_l).unwrap().length();
+        assert!(
+            on_r2 > 1.0 && on_r2 > 4.0 * on_l2,
+            "{right}: {on_r2} vs {on_l2}"
+        );
+    }
+    // The smile corner moves up (+y) and out (+x on the left).
+    let d = motion_mm(m, &lm, "mouthSmileLeft", lm.mouth_corner_l).unwrap();
+    assert!(d.x > 0.0 && d.y > 0.0, "{d}");
+    // Controls that may not exist yet: checked once they do.
+    let chin = lm
+        .loops
+        .mouth
+        .iter()
+        .copied()
+        .min_by(|&a, &b| {
+            let y = |v: u32| {
+                lm.canonical_from_input
+                    .transform_point3(m.mesh.vertices[v as usize])
+                    .y
+            };
+            y(a).total_cmp(&y(b))
+        })
+        .unwrap();
+    if let (Some(l), Some(r)) = (
+        motion_mm(m, &lm, "jawLeft", chin),
+        motion_mm(m, &lm, "jawRight", chin),
+    ) {
+        assert!(l.x > 0.0 && r.x < 0.0, "jawLeft {l}, jawRight {r}");
+    }
+    let eye_motion = |name: &str, eye: &[u32]| -> Option<f64> {
+        Some(
+            eye.iter()
+                .map(|&v| motion_mm(m, &lm, name, v).map(|d| d.length()))
+                .collect::<Option<Vec<f64>>>()?
+                .into_iter()
+                .fold(0.0, f64::max),
+        )
+    };
+    for name in ["eyeBlinkLeft", "blinkLeft"] {
+        if let (Some(l), Some(r)) = (
+            eye_motion(name, &lm.loops.eye_l),
+            eye_motion(name, &lm.loops.eye_r),
+        ) {
+            assert!(
+                l > 1.0 && l > 4.0 * r,
+                "{name}: +x eye {l} mm, -x eye {r} mm"
+            );
+        }
+    }
+}
+
+#[test]
+fn left_is_the_subjects_left_mediapipe() {
+    left_is_the_subjects_left(0);
+}
+
+#[test]
+fn left_is_the_subjects_left_ict_2500() {
+    left_is_the_subjects_left(1);
+}
