@@ -101,20 +101,23 @@ pub const EXPRESSIONS: [NamedExpression; 43] = [
     e(
         "browInnerUp",
         "AU1",
-        "both brows raised by the frontalis (its medial part is not a separate control)",
-        &[("frontalis_l", -0.7), ("frontalis_r", -0.7)],
+        "both brows raised by the frontalis (its medial part is not a separate control); 0.45 \
+         matches the captured ICT browInnerUp's largest motion (6.3 mm) on the ICT face",
+        &[("frontalis_l", -0.45), ("frontalis_r", -0.45)],
     ),
     e(
         "browOuterUpLeft",
         "AU2 (left)",
-        "left brow raised by the left frontalis",
-        &[("frontalis_l", -1.0)],
+        "left brow raised by the left frontalis; 0.6 matches the captured ICT browOuterUp_L's \
+         largest motion (8.6 mm) on the ICT face",
+        &[("frontalis_l", -0.6)],
     ),
     e(
         "browOuterUpRight",
         "AU2 (right)",
-        "right brow raised by the right frontalis",
-        &[("frontalis_r", -1.0)],
+        "right brow raised by the right frontalis; 0.6 matches the captured ICT browOuterUp_R's \
+         largest motion (8.6 mm) on the ICT face",
+        &[("frontalis_r", -0.6)],
     ),
     e(
         "cheekPuff",

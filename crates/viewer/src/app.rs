@@ -323,14 +323,24 @@ impl ViewerApp {
         self.repose();
     }
 
-    /// Applies the preset called `name` (see [`facebem::presets::find`]); false if unknown.
+    /// Applies the preset called `name`: a facebem preset ([`facebem::presets::find`]) or an
+    /// ARKit / VRM 1.0 name ([`facebem::expression_sets::find`], from the controls the rig has);
+    /// false if unknown or the rig has none of its controls.
     pub fn apply_preset(&mut self, name: &str) -> bool {
         let Some(face) = &self.face else { return false };
-        let Some(p) = facebem::presets::find(name) else {
+        let ids = &face.basis.muscle_ids;
+        let (sliders, name) = if let Some(p) = facebem::presets::find(name) {
+            (p.sliders_for(ids), p.name)
+        } else if let Some(e) = facebem::expression_sets::find(name) {
+            let Some(r) = e.resolve(ids) else {
+                return false;
+            };
+            (r.sliders, e.name)
+        } else {
             return false;
         };
-        self.sliders = p.sliders_for(&face.basis.muscle_ids);
-        self.active_preset = Some(p.name);
+        self.sliders = sliders;
+        self.active_preset = Some(name);
         self.repose();
         true
     }

@@ -87,6 +87,33 @@ fn a_preset_button_sets_its_sliders_and_pose() {
 }
 
 #[test]
+fn arkit_and_vrm_names_apply_like_presets() {
+    let basis = common::synthetic_default_basis();
+    let mut harness = common::harness_with(Some(basis.clone()));
+    assert!(harness.state_mut().apply_preset("mouthSmileLeft"));
+    harness.run();
+    let want = facebem::expression_sets::find("mouthSmileLeft")
+        .unwrap()
+        .resolve(&basis.muscle_ids)
+        .unwrap()
+        .sliders;
+    assert!(want.iter().any(|s| *s != 0.0));
+    assert_eq!(harness.state().sliders(), &want[..]);
+    assert_eq!(harness.state().active_preset(), Some("mouthSmileLeft"));
+    let expected = basis.pose(&want).unwrap();
+    for (u, e) in harness.state().uploaded_vertices().iter().zip(&expected) {
+        assert_eq!(u.position, e.as_vec3().to_array());
+    }
+    // A name the rig has no control for, or no name at all, changes nothing.
+    let blink = facebem::expression_sets::find("blinkLeft").unwrap();
+    if blink.resolve(&basis.muscle_ids).is_none() {
+        assert!(!harness.state_mut().apply_preset("blinkLeft"));
+    }
+    assert!(!harness.state_mut().apply_preset("grin"));
+    assert_eq!(harness.state().sliders(), &want[..]);
+}
+
+#[test]
 fn opening_a_bad_file_shows_the_message_and_keeps_the_face() {
     let dir = tempfile::tempdir().unwrap();
     let bad = dir.path().join("broken_face.obj");
