@@ -100,6 +100,13 @@ pub(crate) fn solve_rig(
                 }
             }
         }
+        // Except where a control moves the bone: the jaw segment's vertices (its part of the
+        // contour included) move rigidly with the jaw in the jaw's own responses.
+        for (k, field) in vertex.iter_mut().enumerate() {
+            for (v, d) in rig.prescribed_vertex_motion(k) {
+                field[v as usize] = d;
+            }
+        }
     }
     Ok(Solved {
         element,

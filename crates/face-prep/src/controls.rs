@@ -3,12 +3,13 @@
 //! control).
 
 use crate::anatomy::attachment;
+use crate::jaw::{Jaw, JawMode};
 use crate::muscle_kind::{Generator, MuscleKind};
 use crate::muscle_model::{MuscleModel, anatomical_pattern, place_band};
 use crate::muscles::{Muscle, muscle_pattern};
 use crate::rig::FaceRig;
 use glam::DVec3;
-use std::collections::HashSet;
+use std::collections::{BTreeMap, HashSet};
 
 impl FaceRig {
     /// Places one standard control in the anatomical model: its elements (chains) on the
@@ -25,6 +26,8 @@ impl FaceRig {
                 ),
                 None => (Vec::new(), Vec::new()),
             },
+            // The jaw's elements are skull (rim) elements: [`FaceRig::jaw`].
+            Generator::Jaw(_) => (Vec::new(), Vec::new()),
         };
         Muscle {
             name: kind.display_name().to_owned(),
@@ -50,7 +53,79 @@ impl FaceRig {
                     self.mm_per_unit(),
                     &self.params.anatomical,
                 ),
+                Some(Generator::Jaw(mode)) => self.jaw_pattern(mode),
             },
         }
+    }
+
+    /// The rig's jaw ([`crate::jaw`]): TMJ axis and jaw segment of the rim.
+    ///
+    /// ```
+    /// use face_prep::{ElementTag, FaceRig, RigParams, load_face};
+    /// let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+    ///     .join("../../assets/mediapipe_canonical_4loop.obj");
+    /// let rig = FaceRig::build(&load_face(&path).unwrap(), &RigParams::default()).unwrap();
+    /// let jaw = rig.jaw();
+    /// assert!(!jaw.elements.is_empty());
+    /// assert!(jaw.elements.iter().all(|&e| rig.shell.tags[e as usize] == ElementTag::Rim));
+    /// // Behind the face, between the eyes and the mouth; the hinge below the joint.
+    /// assert!(jaw.pivot.y < rig.boxes.eye_l.min.y && jaw.pivot.y > rig.boxes.mouth.max.y);
+    /// assert!(jaw.hinge.y < jaw.pivot.y && jaw.hinge.z == jaw.pivot.z);
+    /// ```
+    pub fn jaw(&self) -> Jaw {
+        Jaw::of(&self.shell, &self.loops, &self.boxes, self.mm_per_unit())
+    }
+
+    /// Per-element displacement of a jaw mode at slider = +1 (the negative of its activation):
+    /// the jaw segment rigidly, every band element of the other controls with the jaw's motion
+    /// times [`Jaw::tissue_weight`] (elements of no band keep 0 there).
+    fn jaw_pattern(&self, mode: JawMode) -> Vec<(u32, DVec3)> {
+        let jaw = self.jaw();
+        let mm = self.mm_per_unit();
+        let mut out: BTreeMap<u32, DVec3> = BTreeMap::new();
+        for m in &self.muscles {
+            for e in m.elements() {
+                let c = self.shell.centroid(e as usize);
+                let w = jaw.tissue_weight(c.truncate());
+                out.insert(e, -w * jaw.activation(mode, c, mm));
+            }
+        }
+        for &e in &jaw.elements {
+            let c = self.shell.centroid(e as usize);
+            out.insert(e, -jaw.activation(mode, c, mm));
+        }
+        out.into_iter().collect()
+    }
+
+    /// Vertices whose displacement in response `muscle_index` is known exactly rather than
+    /// averaged from their elements, with that displacement at slider = +1 (canonical frame):
+    /// for a jaw mode, every vertex of the jaw segment moves rigidly (so the jaw's part of the
+    /// outer contour moves with the jaw); empty for every other control.
+    pub fn prescribed_vertex_motion(&self, muscle_index: usize) -> Vec<(u32, DVec3)> {
+        let Some(Generator::Jaw(mode)) = self
+            .muscles
+            .get(muscle_index)
+            .and_then(|m| m.kind)
+            .map(MuscleKind::generator)
+        else {
+            return Vec::new();
+        };
+        if self.params.muscle_model != MuscleModel::Anatomical {
+            return Vec::new();
+        }
+        let jaw = self.jaw();
+        let mm = self.mm_per_unit();
+        let vertices: std::collections::BTreeSet<u32> = jaw
+            .elements
+            .iter()
+            .flat_map(|&e| self.shell.triangles[e as usize])
+            .collect();
+        vertices
+            .into_iter()
+            .map(|v| {
+                let p = self.shell.vertices[v as usize];
+                (v, -jaw.activation(mode, p, mm))
+            })
+            .collect()
     }
 }

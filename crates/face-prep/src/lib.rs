@@ -24,6 +24,7 @@ pub mod error;
 mod face_mesh;
 pub mod features;
 pub mod gltf_read;
+pub mod jaw;
 pub mod limits;
 pub mod muscle_file;
 pub mod muscle_kind;

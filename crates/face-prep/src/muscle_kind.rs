@@ -38,6 +38,7 @@
 //! opposite with the same limit.
 
 use crate::anatomy::{self, Attachment, Landmarks};
+use crate::jaw::JawMode;
 use serde::{Deserialize, Serialize};
 
 /// Which side of the face a control is on. "Left" is the face's own left, i.e. +x in the
@@ -79,6 +80,10 @@ pub enum Generator {
     /// function gives the attachment of the face's-left twin (or of an unpaired control) from
     /// the eye and mouth landmarks; [`anatomy::attachment`] mirrors it for the right twin.
     Band(fn(&Landmarks) -> Attachment),
+    /// A rigid mode of the jaw segment about the TMJ axis ([`crate::jaw`]): no chains of its
+    /// own; it prescribes the jaw segment of the rim and carries the lower face's band
+    /// elements along.
+    Jaw(JawMode),
 }
 
 /// One row of the control table.
@@ -144,7 +149,7 @@ macro_rules! controls {
     };
 }
 
-use Generator::Band;
+use Generator::{Band, Jaw};
 
 controls! {
     /// Frontalis, face's left.
@@ -179,6 +184,15 @@ controls! {
     DepressorLabiiInferiorisR = ("depressor_labii_inferioris_r",
         "Depressor labii inferioris R", Right, DepressorLabiiInferiorisL, Thesis,
         Band(anatomy::depressor_labii_inferioris)),
+    /// Jaw opening: rotation about the temporomandibular axis (−1 = fully open).
+    JawOpen = ("jaw_open", "Jaw open", Center, JawOpen, Anatomical, Jaw(JawMode::Open)),
+    /// Jaw protrusion (−1 = chin forward, +z).
+    JawForward = ("jaw_forward", "Jaw forward", Center, JawForward, Anatomical,
+        Jaw(JawMode::Forward)),
+    /// Jaw lateral shift (−1 = chin toward the face's left, +x; +1 toward the right). Its own
+    /// mirror: the mirror image of a pose negates it.
+    JawLateral = ("jaw_lateral", "Jaw lateral", Center, JawLateral, Anatomical,
+        Jaw(JawMode::Lateral)),
 }
 
 impl MuscleKind {
@@ -249,6 +263,7 @@ impl MuscleKind {
     pub fn band(self) -> Option<fn(&Landmarks) -> Attachment> {
         match self.generator() {
             Generator::Band(f) => Some(f),
+            Generator::Jaw(_) => None,
         }
     }
 }
