@@ -330,10 +330,12 @@ fn cli_sheet_writes_the_png() {
         String::from_utf8_lossy(&run.stderr)
     );
     let stdout = String::from_utf8_lossy(&run.stdout);
-    assert!(stdout.contains("11 cells"), "{stdout}");
+    // Neutral and one cell per control of the default face.
+    let cells = face_prep::MuscleKind::ALL.len() + 1;
+    assert!(stdout.contains(&format!("{cells} cells")), "{stdout}");
     let decoder = png::Decoder::new(std::io::BufReader::new(std::fs::File::open(&out).unwrap()));
     let info = decoder.read_info().unwrap().info().clone();
-    let l = contact_sheet::layout(11, &SheetOptions::default());
+    let l = contact_sheet::layout(cells, &SheetOptions::default());
     assert_eq!((info.width, info.height), (l.width, l.height));
 
     let bad = std::process::Command::new(bin)

@@ -773,7 +773,7 @@ fn a_rig_with_intersecting_shell_elements_is_flagged() {
         ..Default::default()
     };
     let mut harness = egui_kittest::Harness::builder()
-        .with_size([1100.0, 720.0])
+        .with_size([1100.0, 1400.0])
         .wgpu()
         .build_eframe(move |cc| viewer::ViewerApp::new(cc, options.clone()));
     harness.run();
