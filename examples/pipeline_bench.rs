@@ -1,6 +1,6 @@
 //! Release figures of the pipeline, one line per bundled face:
 //! precompute time (prep, BEM, transfer) and peak memory, cache size and load time, pose update
-//! time for all ten muscles.
+//! time for all controls.
 //!
 //! ```text
 //! cargo run --release --example pipeline_bench            # every face in assets/
@@ -57,7 +57,10 @@ fn bench_one(path: &Path) -> Result<()> {
     let load_ms = t.elapsed().as_secs_f64() * 1e3 / f64::from(loads);
 
     let n = model.basis.muscle_count();
-    let sliders: Vec<f64> = (0..n).map(|k| -0.9 + 0.17 * k as f64).collect();
+    // Spread over [-0.9, 0.9] whatever the number of controls (a fixed step left [-1, 1]
+    // from the 13th control on).
+    let step = 1.8 / n.saturating_sub(1).max(1) as f64;
+    let sliders: Vec<f64> = (0..n).map(|k| -0.9 + step * k as f64).collect();
     let mut out = Vec::new();
     let poses: u32 = 2000;
     let t = Instant::now();
