@@ -10,11 +10,14 @@ row() { # name, command...
   local code=$?
   local t=$(grep "Elapsed (wall" $W/time.txt | awk '{print $NF}')
   local m=$(grep "Maximum resident" $W/time.txt | awk '{print $NF}')
+  local u=$(grep "User time" $W/time.txt | awk '{print $NF}')
+  local k=$(grep "System time" $W/time.txt | awk '{print $NF}')
+  local cpu=$(awk "BEGIN{print $u + $k}")
   local msg=$(head -1 $W/err.txt | cut -c1-150 | sed 's/|/\\|/g')
-  echo "| $name | $code | $t | $((m/1024)) MB | $msg |"
+  echo "| $name | $code | $t | ${cpu} s | $((m/1024)) MB | $msg |"
 }
-echo "| input | exit | time | peak RSS | message (first 150 chars) |"
-echo "|---|---|---|---|---|"
+echo "| input | exit | wall | CPU | peak RSS | message (first 150 chars) |"
+echo "|---|---|---|---|---|---|"
 grep -v '^#' $CORPUS/EXPECTED.tsv | while IFS=$'\t' read f code needle; do
   [ -z "$f" ] && continue
   d=$(mktemp -d); cp $CORPUS/$f $d/
