@@ -304,6 +304,11 @@ fn bad_input_fails_with_one_line_naming_the_problem() {
     assert_one_line_error(&out, &["-1.5", "outside [-1, 1]"]);
     let out = facebem(&["pose", s(rig), "--set", "buccinator=0.5", "-o", s(&out_obj)]);
     assert_one_line_error(&out, &["unknown muscle", "buccinator"]);
+    // The list of known names is capped at ten.
+    let err = stderr(&out);
+    let known = err.split("(known: ").nth(1).unwrap_or_default();
+    let names = known.split(", ").filter(|n| !n.starts_with("and ")).count();
+    assert!((1..=10).contains(&names), "{names} names listed: {err}");
     let out = facebem(&["pose", s(rig), "--preset", "grumpy", "-o", s(&out_obj)]);
     assert_one_line_error(&out, &["unknown preset", "grumpy"]);
     let out = facebem(&["pose", s(rig), "--set", "frontalis_l", "-o", s(&out_obj)]);

@@ -415,7 +415,13 @@ fn pose(rig: &Path, sets: &[String], preset: Option<&str>, output: &Path) -> Res
             .collect(),
     };
     if let Some((id, _)) = parsed.iter().find(|(id, _)| !known.contains(id)) {
-        bail!("unknown muscle {id:?} (known: {})", known.join(", "));
+        // At most ten names in a one-line message (the anatomical rig has 27 controls).
+        let shown: Vec<&str> = known.iter().take(10).map(String::as_str).collect();
+        let more = match known.len().saturating_sub(shown.len()) {
+            0 => String::new(),
+            n => format!(", and {n} more: `facebem info` lists them"),
+        };
+        bail!("unknown muscle {id:?} (known: {}{more})", shown.join(", "));
     }
     let model = model_from_opened(rig, opened)?;
     let ids = model.muscle_ids().to_vec();
