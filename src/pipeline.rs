@@ -394,11 +394,15 @@ pub fn build_face_model(
     };
     let response_amplification = (0..rig.muscles.len())
         .map(|k| {
-            let prescribed = rig
-                .muscle_pattern(k)
-                .iter()
-                .map(|(_, d)| d.length())
-                .fold(0.0, f64::max);
+            // A force-driven control's pattern is a traction: its response is compared with
+            // the front displacement it was scaled to (a near-singular shell answers with far
+            // larger motion inside the shell than on the face).
+            let prescribed = rig.force_target(k).unwrap_or_else(|| {
+                rig.muscle_pattern(k)
+                    .iter()
+                    .map(|(_, d)| d.length())
+                    .fold(0.0, f64::max)
+            });
             let response = solved.element[k]
                 .iter()
                 .map(|u| u.length())

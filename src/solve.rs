@@ -20,10 +20,12 @@ pub(crate) struct Solved {
     pub report: bem_core::SolveReport,
 }
 
-/// Solves the rig's BEM problem: skull elements fixed at zero, every muscle element
-/// displacement-prescribed (zero, except in its own muscle's right-hand side, where it follows
-/// the muscle's pattern), all other elements traction-free. One LU, one right-hand side per
-/// muscle.
+/// Solves the rig's BEM problem: skull elements fixed at zero, every element of a
+/// displacement-driven muscle displacement-prescribed (zero, except in its own muscle's
+/// right-hand side, where it follows the muscle's pattern), all other elements traction-type:
+/// free, except a force-driven control's elements in its own right-hand side
+/// ([`face_prep::force_controls`]; that response is scaled to its target). One LU, one
+/// right-hand side per control.
 pub(crate) fn solve_rig(
     rig: &FaceRig,
     poisson: f64,
@@ -37,9 +39,12 @@ pub(crate) fn solve_rig(
     for &e in &rig.skull {
         prescribed[e as usize] = true;
     }
-    for m in &rig.muscles {
-        for e in m.elements() {
-            prescribed[e as usize] = true;
+    // Force-driven controls load traction-type elements (free in every other response).
+    for (k, m) in rig.muscles.iter().enumerate() {
+        if !rig.is_force_control(k) {
+            for e in m.elements() {
+                prescribed[e as usize] = true;
+            }
         }
     }
     let groups: Vec<Vec<(usize, DVec3)>> = (0..rig.muscles.len())
@@ -85,6 +90,20 @@ pub(crate) fn solve_rig(
         .into_iter()
         .map(|s| s.displacement)
         .collect();
+    let mut element = element;
+    // A force has no unit: scale each force-driven response to its target (the largest
+    // front-surface displacement of the muscle's full contraction).
+    let front_vertices = rig.face_vertex_count.min(rig.shell.vertices.len());
+    for (k, field) in element.iter_mut().enumerate() {
+        if let Some(target) = rig.force_target(k) {
+            let at_vertices = bem_core::element_to_vertex(&mesh, field)?;
+            let factor =
+                face_prep::force_controls::scale_to_target(&at_vertices[..front_vertices], target);
+            for u in field.iter_mut() {
+                *u *= factor;
+            }
+        }
+    }
     let mut vertex: Vec<Vec<DVec3>> = element
         .iter()
         .map(|u| bem_core::element_to_vertex(&mesh, u))

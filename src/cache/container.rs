@@ -21,8 +21,9 @@ pub const MAGIC: [u8; 8] = *b"FACEBEM\x1a";
 /// parameters gained `LargeFaceParams::normal_weight`; 4: `border_spacing` and
 /// `PipelineParams::peel_rolled_in`; 5: `RigParams::units`, `muscle_model`, `anatomical` and
 /// `FaceRig::unit`; 6: `PrecomputeReport::condition_estimate`; 7: `quadrature_unconverged` and
-/// `quadrature_worst_error`, `QuadratureParams::tolerance`).
-pub const FORMAT_VERSION: u32 = 7;
+/// `quadrature_worst_error`, `QuadratureParams::tolerance`; 8: the control table's rows, the
+/// force-driven `cheek_puff`).
+pub const FORMAT_VERSION: u32 = 8;
 /// Size of the fixed header in bytes.
 pub const HEADER_LEN: usize = 8 + 4 + 32 + 32 + 8 + 32;
 

@@ -118,7 +118,7 @@ pub enum BemError {
         /// Number supplied.
         got: usize,
     },
-    /// A displacement group refers to an element that does not exist or is not displacement-prescribed.
+    /// A load group refers to an element that does not exist.
     #[error("group {group} refers to element {element}, which {reason}")]
     BadGroupElement {
         /// Index of the group.

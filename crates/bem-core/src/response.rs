@@ -1,4 +1,4 @@
-//! Response basis (thesis eq. 9.2): one precomputed solution per displacement group.
+//! Response basis (thesis eq. 9.2): one precomputed solution per load group.
 
 use glam::DVec3;
 
@@ -7,13 +7,15 @@ use crate::{
     SurfaceMesh,
 };
 
-/// A displacement pattern on some displacement-prescribed elements: `(element, displacement)`.
+/// A load pattern: `(element, value)`, the displacement of a displacement-prescribed element or
+/// the traction on a traction-type one.
 pub type DisplacementGroup = Vec<(usize, DVec3)>;
 
 /// Responses of a linear elastic body to unit amplitudes of several displacement groups.
 ///
 /// All elements marked prescribed keep zero displacement except where a group drives them; all
-/// other elements are traction-free. K is factorised once and every group is one right-hand side,
+/// other elements are traction-free except where a group loads them with a traction (a force-
+/// driven muscle). K is factorised once and every group is one right-hand side,
 /// so any combination `Σ_k s_k · group_k` has the exact response `Σ_k s_k · response_k`.
 #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct ResponseBasis {
@@ -27,8 +29,10 @@ pub struct ResponseBasis {
 impl ResponseBasis {
     /// Computes the response of each group.
     ///
-    /// Fails with [`BemError::BadGroupElement`] when a group names an element that does not
-    /// exist or is not prescribed, and [`BemError::PureTraction`] when nothing is prescribed.
+    /// A group's value on a prescribed element is that element's displacement, on any other
+    /// element the traction on it. Fails with [`BemError::BadGroupElement`] when a group names
+    /// an element that does not exist, and [`BemError::PureTraction`] when nothing is
+    /// prescribed.
     ///
     /// ```
     /// use bem_core::{shapes, Control, Material, ResponseBasis, SolveParams};
@@ -67,13 +71,6 @@ impl ResponseBasis {
                         group: g,
                         element,
                         reason: "does not exist",
-                    });
-                }
-                if !prescribed[element] {
-                    return Err(BemError::BadGroupElement {
-                        group: g,
-                        element,
-                        reason: "is not displacement-prescribed",
                     });
                 }
                 loads.set(element, g, value)?;

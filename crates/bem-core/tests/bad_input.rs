@@ -189,25 +189,35 @@ fn wrong_number_of_conditions_and_bad_values_are_reported() {
 }
 
 #[test]
-fn response_groups_must_name_prescribed_elements() {
+fn response_groups_must_name_existing_elements_and_load_free_ones_with_tractions() {
     let mesh = shapes::sphere(1, 1.0).expect("valid");
     let m = Material::new(0.3, 1.0).expect("material");
     let prescribed: Vec<bool> = (0..80).map(|e| e < 40).collect();
     let p = SolveParams::default();
     let c = Control::default();
-    let err = ResponseBasis::compute(&mesh, &m, &prescribed, &[vec![(50, DVec3::X)]], &p, &c)
-        .unwrap_err();
+    // A group value on a free element is a traction (a force-driven muscle): it comes back as
+    // that element's traction, the prescribed elements stay put, and the body moves.
+    let basis = ResponseBasis::compute(&mesh, &m, &prescribed, &[vec![(50, DVec3::X)]], &p, &c)
+        .expect("traction group");
+    let r = &basis.responses[0];
     assert!(
-        matches!(
-            err,
-            BemError::BadGroupElement {
-                group: 0,
-                element: 50,
-                ..
-            }
-        ),
-        "{err}"
+        (r.traction[50] - DVec3::X).length() < 1e-12,
+        "{}",
+        r.traction[50]
     );
+    for e in 40..80 {
+        if e != 50 {
+            assert!(
+                r.traction[e].length() < 1e-12,
+                "element {e}: {}",
+                r.traction[e]
+            );
+        }
+    }
+    for e in 0..40 {
+        assert_eq!(r.displacement[e], DVec3::ZERO, "element {e}");
+    }
+    assert!(r.displacement[50].x > 0.0, "{}", r.displacement[50]);
     let err = ResponseBasis::compute(
         &mesh,
         &m,

@@ -28,6 +28,14 @@ impl FaceRig {
             },
             // The jaw's elements are skull (rim) elements: [`FaceRig::jaw`].
             Generator::Jaw(_) => (Vec::new(), Vec::new()),
+            Generator::Pressure => (
+                Vec::new(),
+                crate::force_controls::place_cheek_puff(
+                    &self.shell,
+                    skull,
+                    &crate::anatomy::Landmarks::of(&self.boxes),
+                ),
+            ),
         };
         Muscle {
             name: kind.display_name().to_owned(),
@@ -54,6 +62,7 @@ impl FaceRig {
                     &self.params.anatomical,
                 ),
                 Some(Generator::Jaw(mode)) => self.jaw_pattern(mode),
+                Some(Generator::Pressure) => self.cheek_puff_traction(muscle),
             },
         }
     }
@@ -83,7 +92,12 @@ impl FaceRig {
         let jaw = self.jaw();
         let mm = self.mm_per_unit();
         let mut out: BTreeMap<u32, DVec3> = BTreeMap::new();
-        for m in &self.muscles {
+        // Only displacement-prescribed elements are carried (a force-driven control's elements
+        // are traction-type: a value there would be a traction).
+        for (k, m) in self.muscles.iter().enumerate() {
+            if self.is_force_control(k) {
+                continue;
+            }
             for e in m.elements() {
                 let c = self.shell.centroid(e as usize);
                 let w = jaw.tissue_weight(c.truncate());

@@ -23,6 +23,7 @@ mod controls;
 pub mod error;
 mod face_mesh;
 pub mod features;
+pub mod force_controls;
 pub mod gltf_read;
 pub mod jaw;
 pub mod limits;

@@ -84,6 +84,11 @@ pub enum Generator {
     /// own; it prescribes the jaw segment of the rim and carries the lower face's band
     /// elements along.
     Jaw(JawMode),
+    /// Air pressure inside the mouth on the deep layer of both cheeks
+    /// ([`crate::force_controls`]): a traction load, free (traction-type) in every other
+    /// control's response, scaled after the solve to
+    /// [`crate::force_controls::CHEEK_PUFF_MM`].
+    Pressure,
 }
 
 /// One row of the control table.
@@ -149,7 +154,7 @@ macro_rules! controls {
     };
 }
 
-use Generator::{Band, Jaw};
+use Generator::{Band, Jaw, Pressure};
 
 controls! {
     /// Frontalis, face's left.
@@ -193,6 +198,8 @@ controls! {
     /// mirror: the mirror image of a pose negates it.
     JawLateral = ("jaw_lateral", "Jaw lateral", Center, JawLateral, Anatomical,
         Jaw(JawMode::Lateral)),
+    /// Cheek puff (unpaired): air pressure inside the mouth pushes both cheeks out.
+    CheekPuff = ("cheek_puff", "Cheek puff", Center, CheekPuff, Anatomical, Pressure),
 }
 
 impl MuscleKind {
@@ -263,8 +270,15 @@ impl MuscleKind {
     pub fn band(self) -> Option<fn(&Landmarks) -> Attachment> {
         match self.generator() {
             Generator::Band(f) => Some(f),
-            Generator::Jaw(_) => None,
+            Generator::Jaw(_) | Generator::Pressure => None,
         }
+    }
+
+    /// Whether this control is force-driven ([`Generator::Pressure`]): its elements carry a
+    /// traction in its own response and are free in every other one
+    /// ([`crate::force_controls`]).
+    pub fn is_force(self) -> bool {
+        matches!(self.generator(), Generator::Pressure)
     }
 }
 

@@ -256,10 +256,24 @@ impl FaceRig {
             }
             MuscleModel::Anatomical => {
                 let skull: HashSet<u32> = self.skull.iter().copied().collect();
-                MuscleKind::ALL
+                let mut controls: Vec<Muscle> = MuscleKind::ALL
                     .iter()
                     .map(|&kind| self.place_control(kind, &skull))
-                    .collect()
+                    .collect();
+                // A force-driven control loads traction-type elements only: the elements of
+                // displacement-driven controls are prescribed in every response.
+                let prescribed: HashSet<u32> = controls
+                    .iter()
+                    .filter(|m| !m.kind.is_some_and(MuscleKind::is_force))
+                    .flat_map(|m| m.elements())
+                    .collect();
+                for m in &mut controls {
+                    if m.kind.is_some_and(MuscleKind::is_force) {
+                        m.front_chain.retain(|e| !prescribed.contains(e));
+                        m.back_chain.retain(|e| !prescribed.contains(e));
+                    }
+                }
+                controls
             }
         };
     }

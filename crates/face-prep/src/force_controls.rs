@@ -1,0 +1,148 @@
+//! Force-driven controls: loads that push with a traction instead of prescribing a
+//! displacement. Today one: the cheek puff, air pressure inside the mouth.
+//!
+//! The rig is solved once (one LU) with one boundary-condition layout for every response: an
+//! element is either displacement-prescribed in every response (skull, and the bands of the
+//! displacement-driven muscles, held at zero in the other muscles' responses) or traction-type
+//! in every response. A force-driven control loads traction-type elements: they stay free
+//! (zero traction) in every other response, so adding one changes no other response.
+//!
+//! A traction has no length unit of its own, so a force-driven response is scaled after the
+//! solve ([`FaceRig::force_target`]): its largest displacement on the front surface is the
+//! control's target (the cheek puff: [`CHEEK_PUFF_MM`]).
+//!
+//! ```
+//! use face_prep::{FaceRig, MuscleKind, RigParams, load_face};
+//! let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+//!     .join("../../assets/mediapipe_canonical_4loop.obj");
+//! let rig = FaceRig::build(&load_face(&path).unwrap(), &RigParams::default()).unwrap();
+//! let k = rig.muscle_index(MuscleKind::CheekPuff).unwrap();
+//! assert!(rig.is_force_control(k));
+//! let target_mm = rig.force_target(k).unwrap() * rig.mm_per_unit();
+//! assert!((target_mm - face_prep::force_controls::CHEEK_PUFF_MM).abs() < 1e-9);
+//! ```
+
+use crate::anatomy::Landmarks;
+use crate::muscle_kind::Generator;
+use crate::muscle_model::band_weight;
+use crate::rig::FaceRig;
+use crate::shell::{ElementTag, Shell};
+use glam::{DVec2, DVec3};
+use std::collections::HashSet;
+
+/// Half-axes of each cheek's pressure region, as fractions of the interocular distance
+/// (across) and of the eye-to-mouth height (up): the buccal region between the mouth corner and
+/// the masseter, below the zygomatic arch.
+pub const CHEEK_RADII: (f64, f64) = (0.32, 0.35);
+
+/// Largest displacement, mm, of the face at full cheek puff (the response is scaled to it).
+pub const CHEEK_PUFF_MM: f64 = 8.0;
+
+/// Places the cheek puff: the back (deep-layer) elements, not skull, inside either cheek's
+/// ellipse in the front plane ([`cheek_weight`] > 0).
+pub fn place_cheek_puff(shell: &Shell, skull: &HashSet<u32>, l: &Landmarks) -> Vec<u32> {
+    (0..shell.element_count())
+        .filter(|&e| shell.tags[e] == ElementTag::Back && !skull.contains(&(e as u32)))
+        .filter(|&e| cheek_weight(shell.centroid(e).truncate(), l) > 0.0)
+        .map(|e| e as u32)
+        .collect()
+}
+
+/// Raised-cosine weight of a front-plane point in the nearer cheek's ellipse (1 at its centre,
+/// 0 on and outside its rim). The ellipses are centred 0.35 interocular distances lateral of
+/// each mouth corner, 0.15 eye-to-mouth heights above the mouth's centre line, with half-axes
+/// [`CHEEK_RADII`].
+///
+/// ```
+/// use face_prep::{Box2, FeatureBoxes};
+/// use face_prep::anatomy::Landmarks;
+/// use face_prep::force_controls::cheek_weight;
+/// use glam::DVec2;
+/// let b = |x0, y0, x1, y1| Box2::new(DVec2::new(x0, y0), DVec2::new(x1, y1));
+/// let boxes = FeatureBoxes::derive(
+///     b(-8.0, -10.0, 8.0, 8.0),
+///     b(1.8, 1.0, 4.5, 2.0),
+///     b(-4.5, 1.0, -1.8, 2.0),
+///     b(-2.5, -5.5, 2.5, -4.5),
+/// )
+/// .unwrap();
+/// let l = Landmarks::of(&boxes);
+/// let centre = DVec2::new(l.mouth.x + l.mouth_half_width + 0.35 * l.iod, l.mouth.y + 0.15 * l.h);
+/// assert!((cheek_weight(centre, &l) - 1.0).abs() < 1e-12);
+/// assert_eq!(cheek_weight(l.mouth, &l), 0.0);
+/// ```
+pub fn cheek_weight(p: DVec2, l: &Landmarks) -> f64 {
+    let side = if p.x >= l.mouth.x { 1.0 } else { -1.0 };
+    let centre = DVec2::new(
+        l.mouth.x + side * (l.mouth_half_width + 0.35 * l.iod),
+        l.mouth.y + 0.15 * l.h,
+    );
+    let (ax, ay) = (CHEEK_RADII.0 * l.iod, CHEEK_RADII.1 * l.h);
+    if ax <= 0.0 || ay <= 0.0 {
+        return 0.0;
+    }
+    let r = (((p.x - centre.x) / ax).powi(2) + ((p.y - centre.y) / ay).powi(2)).sqrt();
+    band_weight(r, 1.0)
+}
+
+impl FaceRig {
+    /// Whether control `k` of [`FaceRig::muscles`] is force-driven (a standard force control in
+    /// the anatomical model; see the module docs).
+    pub fn is_force_control(&self, k: usize) -> bool {
+        self.params.muscle_model == crate::muscle_model::MuscleModel::Anatomical
+            && self
+                .muscles
+                .get(k)
+                .and_then(|m| m.kind)
+                .is_some_and(|kind| kind.is_force())
+    }
+
+    /// Largest displacement on the front surface, in the rig's units, that force-driven control
+    /// `k` reaches at full value (its response is scaled to it); `None` for other controls.
+    pub fn force_target(&self, k: usize) -> Option<f64> {
+        if !self.is_force_control(k) {
+            return None;
+        }
+        match self.muscles[k].kind?.generator() {
+            Generator::Pressure => {
+                Some(CHEEK_PUFF_MM * self.params.anatomical.strength / self.mm_per_unit())
+            }
+            _ => None,
+        }
+    }
+
+    /// Traction pattern of the cheek puff at slider = +1 (suction: along the deep layer's
+    /// outward normal, into the mouth; −1, the puff, pushes the cheeks out), weighted by
+    /// [`cheek_weight`]. Arbitrary magnitude: the response is scaled to
+    /// [`FaceRig::force_target`].
+    pub(crate) fn cheek_puff_traction(&self, muscle: &crate::muscles::Muscle) -> Vec<(u32, DVec3)> {
+        let l = Landmarks::of(&self.boxes);
+        muscle
+            .elements()
+            .map(|e| {
+                let [a, b, c] = self.shell.corners(e as usize);
+                let outward = (b - a).cross(c - a).normalize_or_zero();
+                let w = cheek_weight(self.shell.centroid(e as usize).truncate(), &l);
+                (e, outward * w)
+            })
+            .collect()
+    }
+}
+
+/// Scales a response to a force-driven control so that its largest front-surface displacement
+/// (`front` = the front vertices' displacements) is `target`; returns the factor (1 for a
+/// response that does not move the front).
+///
+/// ```
+/// use glam::DVec3;
+/// let front = [DVec3::new(0.0, 2.0, 0.0), DVec3::new(1.0, 0.0, 0.0)];
+/// assert_eq!(face_prep::force_controls::scale_to_target(&front, 0.5), 0.25);
+/// ```
+pub fn scale_to_target(front: &[DVec3], target: f64) -> f64 {
+    let peak = front.iter().map(|u| u.length()).fold(0.0, f64::max);
+    if peak > 0.0 && peak.is_finite() {
+        target / peak
+    } else {
+        1.0
+    }
+}
