@@ -32,6 +32,7 @@ pub mod describe;
 pub mod export;
 pub mod expression_sets;
 pub mod large_face;
+mod lid_closure;
 pub mod measure;
 pub mod open;
 mod pipeline;

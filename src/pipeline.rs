@@ -356,7 +356,7 @@ pub fn build_face_model(
         .iter()
         .map(|field| field[..n_front].iter().map(|d| linear * *d).collect())
         .collect();
-    let (displacements, simplified) = match simplified {
+    let (mut displacements, simplified) = match simplified {
         None => (sim_fields, None),
         Some(s) => {
             // Fields on the reduced copy's vertices (through its own welding map).
@@ -385,9 +385,17 @@ pub fn build_face_model(
             (fields, Some(SimplifiedFace { mesh: s, transfer }))
         }
     };
+    let muscle_ids: Vec<String> = rig.muscles.iter().map(muscle_id).collect();
+    crate::lid_closure::close_blinks(
+        &rig,
+        mesh,
+        simplified.as_ref().map(|s| (&s.mesh, &simulated)),
+        &muscle_ids,
+        &mut displacements,
+    );
     control.report(Stage::Transfer, 1, 1);
     let basis = MuscleBasis {
-        muscle_ids: rig.muscles.iter().map(muscle_id).collect(),
+        muscle_ids,
         neutral: mesh.vertices.clone(),
         triangles: mesh.triangles.clone(),
         displacements,

@@ -22,8 +22,9 @@ pub const MAGIC: [u8; 8] = *b"FACEBEM\x1a";
 /// `PipelineParams::peel_rolled_in`; 5: `RigParams::units`, `muscle_model`, `anatomical` and
 /// `FaceRig::unit`; 6: `PrecomputeReport::condition_estimate`; 7: `quadrature_unconverged` and
 /// `quadrature_worst_error`, `QuadratureParams::tolerance`; 8: the control table's rows, the
-/// force-driven `cheek_puff`).
-pub const FORMAT_VERSION: u32 = 8;
+/// force-driven `cheek_puff`; 9: the anatomical rig's eyelid controls, `Generator::Lid`, and lid
+/// back elements no longer skull).
+pub const FORMAT_VERSION: u32 = 9;
 /// Size of the fixed header in bytes.
 pub const HEADER_LEN: usize = 8 + 4 + 32 + 32 + 8 + 32;
 

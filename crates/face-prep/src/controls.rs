@@ -4,7 +4,7 @@
 
 use crate::anatomy::attachment;
 use crate::jaw::{Jaw, JawMode};
-use crate::muscle_kind::{Generator, MuscleKind};
+use crate::muscle_kind::{Generator, MuscleKind, Side};
 use crate::muscle_model::{MuscleModel, anatomical_pattern, place_band};
 use crate::muscles::{Muscle, muscle_pattern};
 use crate::rig::FaceRig;
@@ -36,6 +36,10 @@ impl FaceRig {
                     &crate::anatomy::Landmarks::of(&self.boxes),
                 ),
             ),
+            Generator::Lid(action) => self
+                .eye_lids(kind.side())
+                .map(|lids| lids.band(&self.shell, skull, action))
+                .unwrap_or_default(),
         };
         Muscle {
             name: kind.display_name().to_owned(),
@@ -63,6 +67,12 @@ impl FaceRig {
                 ),
                 Some(Generator::Jaw(mode)) => self.jaw_pattern(mode),
                 Some(Generator::Pressure) => self.cheek_puff_traction(muscle),
+                Some(Generator::Lid(action)) => self
+                    .eye_lids(muscle.kind.map_or(Side::Left, MuscleKind::side))
+                    .map(|lids| {
+                        lids.pattern(&self.shell, &self.contour_xy(), action, muscle.elements())
+                    })
+                    .unwrap_or_default(),
             },
         }
     }

@@ -21,6 +21,7 @@ pub mod bvh;
 pub mod closest_point;
 mod controls;
 pub mod error;
+pub mod eyelid;
 mod face_mesh;
 pub mod features;
 pub mod force_controls;

@@ -39,6 +39,7 @@
 
 use crate::anatomy::{self, Attachment, Landmarks};
 use crate::jaw::JawMode;
+use crate::eyelid::LidAction;
 use serde::{Deserialize, Serialize};
 
 /// Which side of the face a control is on. "Left" is the face's own left, i.e. +x in the
@@ -89,6 +90,9 @@ pub enum Generator {
     /// control's response, scaled after the solve to
     /// [`crate::force_controls::CHEEK_PUFF_MM`].
     Pressure,
+    /// An eyelid action on the eye of the control's side ([`crate::eyelid`]): a band of lid
+    /// skin next to the eye loop's margins, moved in units of the eye's own opening.
+    Lid(crate::eyelid::LidAction),
 }
 
 /// One row of the control table.
@@ -154,7 +158,7 @@ macro_rules! controls {
     };
 }
 
-use Generator::{Band, Jaw, Pressure};
+use Generator::{Band, Jaw, Lid, Pressure};
 
 controls! {
     /// Frontalis, face's left.
@@ -200,6 +204,29 @@ controls! {
         Jaw(JawMode::Lateral)),
     /// Cheek puff (unpaired): air pressure inside the mouth pushes both cheeks out.
     CheekPuff = ("cheek_puff", "Cheek puff", Center, CheekPuff, Anatomical, Pressure),
+    /// Orbicularis oculi, palpebral part, face's left: blink (the upper lid margin closes onto
+    /// the lower one; [`crate::eyelid`]).
+    OrbicularisOculiPalpebralL = ("orbicularis_oculi_palpebral_l",
+        "Orbicularis oculi (palpebral) L", Left, OrbicularisOculiPalpebralR, Anatomical,
+        Lid(LidAction::Blink)),
+    /// Orbicularis oculi, palpebral part, face's right: blink.
+    OrbicularisOculiPalpebralR = ("orbicularis_oculi_palpebral_r",
+        "Orbicularis oculi (palpebral) R", Right, OrbicularisOculiPalpebralL, Anatomical,
+        Lid(LidAction::Blink)),
+    /// Orbicularis oculi, orbital part, face's left: squint (the lower lid and the cheek rise).
+    OrbicularisOculiOrbitalL = ("orbicularis_oculi_orbital_l",
+        "Orbicularis oculi (orbital) L", Left, OrbicularisOculiOrbitalR, Anatomical,
+        Lid(LidAction::Squint)),
+    /// Orbicularis oculi, orbital part, face's right: squint.
+    OrbicularisOculiOrbitalR = ("orbicularis_oculi_orbital_r",
+        "Orbicularis oculi (orbital) R", Right, OrbicularisOculiOrbitalL, Anatomical,
+        Lid(LidAction::Squint)),
+    /// Levator palpebrae superioris, face's left: the upper lid rises (eye wide).
+    LevatorPalpebraeL = ("levator_palpebrae_l", "Levator palpebrae L", Left,
+        LevatorPalpebraeR, Anatomical, Lid(LidAction::Wide)),
+    /// Levator palpebrae superioris, face's right: eye wide.
+    LevatorPalpebraeR = ("levator_palpebrae_r", "Levator palpebrae R", Right,
+        LevatorPalpebraeL, Anatomical, Lid(LidAction::Wide)),
 }
 
 impl MuscleKind {
@@ -270,7 +297,7 @@ impl MuscleKind {
     pub fn band(self) -> Option<fn(&Landmarks) -> Attachment> {
         match self.generator() {
             Generator::Band(f) => Some(f),
-            Generator::Jaw(_) | Generator::Pressure => None,
+            Generator::Jaw(_) | Generator::Pressure | Generator::Lid(_) => None,
         }
     }
 

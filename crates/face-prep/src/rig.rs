@@ -255,6 +255,8 @@ impl FaceRig {
                 place_standard_muscles(&self.shell, &self.boxes, &self.skull, spacing)
             }
             MuscleModel::Anatomical => {
+                let lid_back = self.lid_back_elements();
+                self.skull.retain(|e| !lid_back.contains(e));
                 let skull: HashSet<u32> = self.skull.iter().copied().collect();
                 let mut controls: Vec<Muscle> = MuscleKind::ALL
                     .iter()
