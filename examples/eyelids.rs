@@ -65,7 +65,9 @@ fn main() -> anyhow::Result<()> {
         let path = if several {
             out.with_file_name(format!(
                 "{}_{name}.png",
-                out.file_stem().and_then(|s| s.to_str()).unwrap_or("eyelids")
+                out.file_stem()
+                    .and_then(|s| s.to_str())
+                    .unwrap_or("eyelids")
             ))
         } else {
             out.clone()
@@ -106,8 +108,8 @@ fn report(model: &FaceModel) -> anyhow::Result<()> {
             Side::Left => (&lm.loops.eye_l, &lm.loops.eye_r),
             _ => (&lm.loops.eye_r, &lm.loops.eye_l),
         };
-        let m = EyeMargins::of_loop(&c, own, side)
-            .ok_or_else(|| anyhow::anyhow!("no eye margins"))?;
+        let m =
+            EyeMargins::of_loop(&c, own, side).ok_or_else(|| anyhow::anyhow!("no eye margins"))?;
         let range = |g: Vec<Option<f64>>| {
             let g: Vec<f64> = g.into_iter().flatten().collect();
             (
