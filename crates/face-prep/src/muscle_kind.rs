@@ -38,8 +38,8 @@
 //! opposite with the same limit.
 
 use crate::anatomy::{self, Attachment, Landmarks};
-use crate::jaw::JawMode;
 use crate::eyelid::LidAction;
+use crate::jaw::JawMode;
 use serde::{Deserialize, Serialize};
 
 /// Which side of the face a control is on. "Left" is the face's own left, i.e. +x in the
