@@ -465,7 +465,7 @@ fn editing_muscles_saving_the_muscle_file_and_rebuilding_with_a_new_offset() {
         ..Default::default()
     };
     let mut harness = egui_kittest::Harness::builder()
-        .with_size([1100.0, 1000.0])
+        .with_size([1100.0, 1400.0])
         .wgpu()
         .build_eframe(move |cc| viewer::ViewerApp::new(cc, options.clone()));
     common::wait_idle(&mut harness);
