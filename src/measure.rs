@@ -25,6 +25,12 @@ pub struct FaceLandmarks {
     pub brow_l: u32,
     /// The same above the right eye.
     pub brow_r: u32,
+    /// Inner brow above the left eye: the front vertex nearest, in the front plane, to the eye
+    /// loop's medial end (its vertex nearest the face's midline) at [`BROW_ABOVE_EYE_TOP_IOD`]
+    /// interocular distances above the eye loop's top (where the corrugator pulls: AU4).
+    pub brow_inner_l: u32,
+    /// The same above the right eye.
+    pub brow_inner_r: u32,
     /// Millimetres per mesh unit (the rig's unit).
     pub mm_per_unit: f64,
 }
@@ -79,6 +85,20 @@ impl FaceLandmarks {
         };
         let brow_l = nearest(eye_l.x, top(&loops.eye_l) + BROW_ABOVE_EYE_TOP_IOD * iod)?;
         let brow_r = nearest(eye_r.x, top(&loops.eye_r) + BROW_ABOVE_EYE_TOP_IOD * iod)?;
+        let midline = 0.5 * (eye_l.x + eye_r.x);
+        let medial_x = |lp: &[u32]| {
+            lp.iter()
+                .map(|&i| c[i as usize].x)
+                .min_by(|a, b| (a - midline).abs().total_cmp(&(b - midline).abs()))
+        };
+        let brow_inner_l = nearest(
+            medial_x(&loops.eye_l)?,
+            top(&loops.eye_l) + BROW_ABOVE_EYE_TOP_IOD * iod,
+        )?;
+        let brow_inner_r = nearest(
+            medial_x(&loops.eye_r)?,
+            top(&loops.eye_r) + BROW_ABOVE_EYE_TOP_IOD * iod,
+        )?;
         Some(FaceLandmarks {
             canonical_from_input,
             loops,
@@ -86,6 +106,8 @@ impl FaceLandmarks {
             mouth_corner_r,
             brow_l,
             brow_r,
+            brow_inner_l,
+            brow_inner_r,
             mm_per_unit,
         })
     }

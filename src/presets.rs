@@ -6,8 +6,9 @@
 //! stands for. Where the rig lacks the muscle of an AU, the AU is approximated by the closest
 //! control the rig has; the approximation is stated next to each preset:
 //!
-//! - frontalis contraction ≈ AU1 + AU2 (inner and outer brow raiser); frontalis *relaxation*
-//!   pushes the brow down and stands in for AU4 (brow lowerer, corrugator — not in the rig);
+//! - frontalis contraction ≈ AU1 + AU2 (inner and outer brow raiser); AU4 (brow lowerer) is the
+//!   corrugator supercilii and procerus, with the frontalis slightly relaxed (on the thesis
+//!   model, which has no corrugator, only that relaxation is left);
 //! - levator labii superioris ≈ AU10 (upper lip raiser), with some AU9 (nose wrinkler);
 //! - zygomaticus major ≈ AU12 (lip corner puller); it also lifts the cheek a little (AU6);
 //! - mentalis ≈ AU17 (chin raiser);
@@ -103,10 +104,14 @@ pub const ALL: [Preset; 9] = [
     Preset {
         name: "angry",
         action_units: "AU4 + AU10 + AU17 + AU23",
-        description: "brow pushed down (frontalis relaxed), upper lip raised, chin raised",
+        description: "brows pulled down and together (corrugator, procerus; frontalis relaxed), \
+                      upper lip raised, chin raised",
         sliders: &[
-            ("frontalis_l", 0.7),
-            ("frontalis_r", 0.7),
+            ("frontalis_l", 0.3),
+            ("frontalis_r", 0.3),
+            ("corrugator_supercilii_l", -0.8),
+            ("corrugator_supercilii_r", -0.8),
+            ("procerus", -0.6),
             ("levator_labii_superioris_l", -0.4),
             ("levator_labii_superioris_r", -0.4),
             ("zygomaticus_major_l", 0.2),
@@ -131,10 +136,12 @@ pub const ALL: [Preset; 9] = [
     Preset {
         name: "disgust",
         action_units: "AU9 + AU10 + AU16 + AU17",
-        description: "upper lip raised hard, lower lip down and out, brow slightly lowered",
+        description: "upper lip raised hard, lower lip down and out, brow slightly lowered \
+                      (procerus, frontalis relaxed)",
         sliders: &[
             ("frontalis_l", 0.3),
             ("frontalis_r", 0.3),
+            ("procerus", -0.5),
             ("levator_labii_superioris_l", -1.0),
             ("levator_labii_superioris_r", -1.0),
             ("mentalis_l", -0.3),

@@ -89,14 +89,14 @@ pub const EXPRESSIONS: [NamedExpression; 43] = [
     e(
         "browDownLeft",
         "AU4 (left)",
-        "inner brow down and in (corrugator); frontalis relaxed +0.3 pushes the brow down",
-        &[("corrugator_supercilii_l", -1.0), ("frontalis_l", 0.3)],
+        "inner brow down and in (corrugator); frontalis relaxed +0.5 pushes the whole brow down",
+        &[("corrugator_supercilii_l", -1.0), ("frontalis_l", 0.5)],
     ),
     e(
         "browDownRight",
         "AU4 (right)",
-        "inner brow down and in (corrugator); frontalis relaxed +0.3 pushes the brow down",
-        &[("corrugator_supercilii_r", -1.0), ("frontalis_r", 0.3)],
+        "inner brow down and in (corrugator); frontalis relaxed +0.5 pushes the whole brow down",
+        &[("corrugator_supercilii_r", -1.0), ("frontalis_r", 0.5)],
     ),
     e(
         "browInnerUp",

@@ -160,7 +160,7 @@ pub fn frontalis(l: &Landmarks) -> Attachment {
         origin: DVec2::new(eye.x, eye.y + 0.95 * l.iod),
         insertion: DVec2::new(eye.x, eye.y + 0.2 * l.iod),
         half_width_mm: 24.0,
-        max_strain: 0.35,
+        max_strain: 0.28,
         spread_mm: 0.0,
     }
 }
@@ -225,6 +225,34 @@ pub fn depressor_labii_inferioris(l: &Landmarks) -> Attachment {
         ),
         half_width_mm: 7.0,
         max_strain: 0.15,
+        spread_mm: 0.0,
+    }
+}
+
+/// Corrugator supercilii (face's left): medial end of the superciliary arch, beside the root of
+/// the nose at the level of the eyes → skin of the medial half of the eyebrow (pulls the brow
+/// down and toward the midline: AU4). The line of pull runs about 40° below the horizontal, so
+/// the inner brow moves down as much as in.
+pub fn corrugator_supercilii(l: &Landmarks) -> Attachment {
+    let eye = left_eye(l);
+    Attachment {
+        origin: DVec2::new(l.mouth.x + 0.06 * l.iod, eye.y),
+        insertion: DVec2::new(eye.x - 0.15 * l.iod, eye.y + 0.28 * l.iod),
+        half_width_mm: 8.0,
+        max_strain: 0.45,
+        spread_mm: 0.0,
+    }
+}
+
+/// Procerus (unpaired): nasal bone → skin between the eyebrows (pulls it down: AU4 with the
+/// corrugators, the horizontal wrinkle over the nose root).
+pub fn procerus(l: &Landmarks) -> Attachment {
+    let eye = left_eye(l);
+    Attachment {
+        origin: DVec2::new(l.mouth.x, eye.y - 0.25 * l.iod),
+        insertion: DVec2::new(l.mouth.x, eye.y + 0.35 * l.iod),
+        half_width_mm: 10.0,
+        max_strain: 0.2,
         spread_mm: 0.0,
     }
 }

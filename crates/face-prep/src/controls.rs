@@ -28,6 +28,16 @@ impl FaceRig {
             },
             // The jaw's elements are skull (rim) elements: [`FaceRig::jaw`].
             Generator::Jaw(_) => (Vec::new(), Vec::new()),
+            Generator::Force(_) => match attachment(kind, &self.boxes) {
+                Some(att) => crate::force_controls::place_force_band(
+                    &self.shell,
+                    skull,
+                    &att,
+                    self.mm_per_unit(),
+                    &self.params.anatomical,
+                ),
+                None => (Vec::new(), Vec::new()),
+            },
             Generator::Pressure => (
                 Vec::new(),
                 crate::force_controls::place_cheek_puff(
@@ -67,6 +77,7 @@ impl FaceRig {
                 ),
                 Some(Generator::Jaw(mode)) => self.jaw_pattern(mode),
                 Some(Generator::Pressure) => self.cheek_puff_traction(muscle),
+                Some(Generator::Force(_)) => self.force_band_traction(muscle),
                 Some(Generator::Lid(action)) => self
                     .eye_lids(muscle.kind.map_or(Side::Left, MuscleKind::side))
                     .map(|lids| {

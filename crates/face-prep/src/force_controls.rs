@@ -1,5 +1,7 @@
 //! Force-driven controls: loads that push with a traction instead of prescribing a
-//! displacement. Today one: the cheek puff, air pressure inside the mouth.
+//! displacement: the muscles added after the thesis's ten (orbicularis oris, depressor anguli
+//! oris, corrugator, procerus, risorius, levator labii superioris alaeque nasi, zygomaticus
+//! minor, levator anguli oris, buccinator) and the cheek puff (air pressure inside the mouth).
 //!
 //! The rig is solved once (one LU) with one boundary-condition layout for every response: an
 //! element is either displacement-prescribed in every response (skull, and the bands of the
@@ -22,13 +24,29 @@
 //! assert!((target_mm - face_prep::force_controls::CHEEK_PUFF_MM).abs() < 1e-9);
 //! ```
 
-use crate::anatomy::Landmarks;
+use crate::anatomy::{Attachment, Landmarks, attachment};
 use crate::muscle_kind::Generator;
-use crate::muscle_model::band_weight;
+use crate::muscle_model::{AnatomicalParams, band_weight, place_band};
 use crate::rig::FaceRig;
 use crate::shell::{ElementTag, Shell};
 use glam::{DVec2, DVec3};
 use std::collections::HashSet;
+
+/// Places a force-driven band: every front and back element (not rim, not skull) whose
+/// centroid lies within the band's whole half-width between origin and insertion.
+pub fn place_force_band(
+    shell: &Shell,
+    skull: &HashSet<u32>,
+    att: &Attachment,
+    mm_per_unit: f64,
+    params: &AnatomicalParams,
+) -> (Vec<u32>, Vec<u32>) {
+    let whole = AnatomicalParams {
+        core_fraction: 1.0,
+        ..*params
+    };
+    place_band(shell, skull, att, mm_per_unit, &whole)
+}
 
 /// Half-axes of each cheek's pressure region, as fractions of the interocular distance
 /// (across) and of the eye-to-mouth height (up): the buccal region between the mouth corner and
@@ -103,12 +121,50 @@ impl FaceRig {
         if !self.is_force_control(k) {
             return None;
         }
-        match self.muscles[k].kind?.generator() {
-            Generator::Pressure => {
-                Some(CHEEK_PUFF_MM * self.params.anatomical.strength / self.mm_per_unit())
+        let kind = self.muscles[k].kind?;
+        let strength = self.params.anatomical.strength;
+        match kind.generator() {
+            Generator::Force(_) => {
+                let att = attachment(kind, &self.boxes)?;
+                Some(att.max_strain * strength * att.origin.distance(att.insertion))
             }
-            _ => None,
+            Generator::Pressure => Some(CHEEK_PUFF_MM * strength / self.mm_per_unit()),
+            Generator::Band(_) | Generator::Jaw(_) | Generator::Lid(_) => None,
         }
+    }
+
+    /// Traction pattern of a force-driven band at slider = +1: the shape of a displacement-
+    /// driven band's pattern ([`crate::muscle_model::anatomical_pattern`]: away from the origin,
+    /// growing with the arc length from it, falling off across the band), weighted once more
+    /// by the position along the muscle (0 at the origin, 1 at the insertion), so the pull
+    /// concentrates where the muscle inserts into the skin. Arbitrary magnitude.
+    pub(crate) fn force_band_traction(&self, muscle: &crate::muscles::Muscle) -> Vec<(u32, DVec3)> {
+        let pattern = crate::muscle_model::anatomical_pattern(
+            &self.shell,
+            &self.shell_bvh(),
+            &self.boxes,
+            &self.contour_xy(),
+            muscle,
+            self.mm_per_unit(),
+            &self.params.anatomical,
+        );
+        let Some(att) = muscle.kind.and_then(|k| attachment(k, &self.boxes)) else {
+            return pattern;
+        };
+        let axis = att.insertion - att.origin;
+        let len2 = axis.length_squared();
+        pattern
+            .into_iter()
+            .map(|(e, t)| {
+                let c = self.shell.centroid(e as usize).truncate();
+                let along = if len2 > 0.0 {
+                    ((c - att.origin).dot(axis) / len2).max(0.0)
+                } else {
+                    1.0
+                };
+                (e, t * along)
+            })
+            .collect()
     }
 
     /// Traction pattern of the cheek puff at slider = +1 (suction: along the deep layer's

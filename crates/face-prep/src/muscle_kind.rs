@@ -22,10 +22,13 @@
 //!    - `Placed`: [`Placed::Thesis`] only for the original ten (placed by both models);
 //!      every new control is [`Placed::Anatomical`].
 //!    - `Generator`: how the control is placed and what it prescribes ([`Generator`]).
-//!      A muscle from a bony origin to a skin insertion is `Band(anatomy::my_muscle)`, where
-//!      `my_muscle(&Landmarks) -> Attachment` (in [`crate::anatomy`]) gives the face's-LEFT
-//!      twin's (or the unpaired control's) origin, insertion, width and strain; the right
-//!      twin uses the same function and is mirrored about the mouth's centre line.
+//!      A muscle from a bony origin to a skin insertion is `Force(anatomy::my_muscle)`
+//!      (force-driven, [`crate::force_controls`]: free in every other response) or
+//!      `Band(anatomy::my_muscle)` (prescribed displacement, which holds its band at zero in
+//!      every other response), where `my_muscle(&Landmarks) -> Attachment` (in
+//!      [`crate::anatomy`]) gives the face's-LEFT twin's (or the unpaired control's) origin,
+//!      insertion, width and strain; the right twin uses the same function and is mirrored
+//!      about the mouth's centre line.
 //! 2. A control that is not a muscle band (a rigid jaw mode, a lid target, a pressure) adds a
 //!    [`Generator`] variant and handles it in the two dispatch points:
 //!    `FaceRig::place_control` (which elements it prescribes: its chains) and
@@ -93,6 +96,12 @@ pub enum Generator {
     /// An eyelid action on the eye of the control's side ([`crate::eyelid`]): a band of lid
     /// skin next to the eye loop's margins, moved in units of the eye's own opening.
     Lid(crate::eyelid::LidAction),
+    /// A muscle band driven by a force instead of a prescribed displacement
+    /// ([`crate::force_controls`]): a traction toward the origin on the band's free elements,
+    /// which stay free (traction-type) in every other control's response, so adding it changes
+    /// no other response. The response is scaled after the solve so that its largest
+    /// displacement on the face is the attachment's `max_strain` × its length.
+    Force(fn(&Landmarks) -> Attachment),
 }
 
 /// One row of the control table.
@@ -158,15 +167,15 @@ macro_rules! controls {
     };
 }
 
-use Generator::{Band, Jaw, Lid, Pressure};
+use Generator::{Band, Force, Jaw, Lid, Pressure};
 
 controls! {
     /// Frontalis, face's left.
     FrontalisL = ("frontalis_l", "Frontalis L", Left, FrontalisR, Thesis,
-        Band(anatomy::frontalis)),
+        Force(anatomy::frontalis)),
     /// Frontalis, face's right.
     FrontalisR = ("frontalis_r", "Frontalis R", Right, FrontalisL, Thesis,
-        Band(anatomy::frontalis)),
+        Force(anatomy::frontalis)),
     /// Levator labii superioris, face's left.
     LevatorLabiiSuperiorisL = ("levator_labii_superioris_l", "Levator labii superioris L",
         Left, LevatorLabiiSuperiorisR, Thesis, Band(anatomy::levator_labii_superioris)),
@@ -227,6 +236,15 @@ controls! {
     /// Levator palpebrae superioris, face's right: eye wide.
     LevatorPalpebraeR = ("levator_palpebrae_r", "Levator palpebrae R", Right,
         LevatorPalpebraeL, Anatomical, Lid(LidAction::Wide)),
+    /// Corrugator supercilii, face's left (brow down and in).
+    CorrugatorSuperciliiL = ("corrugator_supercilii_l", "Corrugator supercilii L", Left,
+        CorrugatorSuperciliiR, Anatomical, Force(anatomy::corrugator_supercilii)),
+    /// Corrugator supercilii, face's right.
+    CorrugatorSuperciliiR = ("corrugator_supercilii_r", "Corrugator supercilii R", Right,
+        CorrugatorSuperciliiL, Anatomical, Force(anatomy::corrugator_supercilii)),
+    /// Procerus (unpaired; skin between the brows down).
+    Procerus = ("procerus", "Procerus", Center, Procerus, Anatomical,
+        Force(anatomy::procerus)),
 }
 
 impl MuscleKind {
@@ -296,16 +314,16 @@ impl MuscleKind {
     /// The muscle-band attachment function, if this control is a muscle band.
     pub fn band(self) -> Option<fn(&Landmarks) -> Attachment> {
         match self.generator() {
-            Generator::Band(f) => Some(f),
+            Generator::Band(f) | Generator::Force(f) => Some(f),
             Generator::Jaw(_) | Generator::Pressure | Generator::Lid(_) => None,
         }
     }
 
-    /// Whether this control is force-driven ([`Generator::Pressure`]): its elements carry a
-    /// traction in its own response and are free in every other one
+    /// Whether this control is force-driven ([`Generator::Force`], [`Generator::Pressure`]):
+    /// its elements carry a traction in its own response and are free in every other one
     /// ([`crate::force_controls`]).
     pub fn is_force(self) -> bool {
-        matches!(self.generator(), Generator::Pressure)
+        matches!(self.generator(), Generator::Force(_) | Generator::Pressure)
     }
 }
 

@@ -160,7 +160,7 @@ fn first_run_computes_and_caches_the_default_rig_and_the_second_run_loads_it() {
     };
     let start = |options: viewer::ViewerOptions| {
         egui_kittest::Harness::builder()
-            .with_size([1100.0, 1000.0])
+            .with_size([1100.0, 1200.0])
             .wgpu()
             .build_eframe(move |cc| viewer::ViewerApp::new(cc, options.clone()))
     };
@@ -465,7 +465,7 @@ fn editing_muscles_saving_the_muscle_file_and_rebuilding_with_a_new_offset() {
         ..Default::default()
     };
     let mut harness = egui_kittest::Harness::builder()
-        .with_size([1100.0, 1400.0])
+        .with_size([1100.0, 1500.0])
         .wgpu()
         .build_eframe(move |cc| viewer::ViewerApp::new(cc, options.clone()));
     common::wait_idle(&mut harness);
@@ -588,7 +588,7 @@ fn edited_feature_boxes_re_place_muscles_and_skull_and_invalid_boxes_are_refused
         ..Default::default()
     };
     let mut harness = egui_kittest::Harness::builder()
-        .with_size([1100.0, 1100.0])
+        .with_size([1100.0, 1200.0])
         .wgpu()
         .build_eframe(move |cc| viewer::ViewerApp::new(cc, options.clone()));
     common::wait_idle(&mut harness);
@@ -773,7 +773,7 @@ fn a_rig_with_intersecting_shell_elements_is_flagged() {
         ..Default::default()
     };
     let mut harness = egui_kittest::Harness::builder()
-        .with_size([1100.0, 1400.0])
+        .with_size([1100.0, 1500.0])
         .wgpu()
         .build_eframe(move |cc| viewer::ViewerApp::new(cc, options.clone()));
     harness.run();
@@ -816,7 +816,7 @@ fn the_face_is_drawn_at_once_exports_wait_for_the_rig_and_the_legend_names_every
         ..Default::default()
     };
     let mut harness = egui_kittest::Harness::builder()
-        .with_size([1100.0, 1000.0])
+        .with_size([1100.0, 1200.0])
         .wgpu()
         .build_eframe(move |cc| viewer::ViewerApp::new(cc, options.clone()));
     // The first frame already holds the default face (the rig is computed in the background).

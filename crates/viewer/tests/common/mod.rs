@@ -48,7 +48,7 @@ pub fn synthetic_default_basis() -> MuscleBasis {
 /// A harness running the real app on wgpu (lavapipe in CI), starting empty.
 pub fn harness_with(basis: Option<MuscleBasis>) -> Harness<'static, ViewerApp> {
     let mut harness = Harness::builder()
-        .with_size([1100.0, 1400.0])
+        .with_size([1100.0, 1500.0])
         .with_render_cursor(false)
         .wgpu()
         .build_eframe(|cc| {
