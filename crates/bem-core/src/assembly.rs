@@ -15,12 +15,12 @@ use glam::DVec3;
 use rayon::prelude::*;
 
 use crate::DenseMatrix;
+use crate::column::{assemble_column, block_times};
 use crate::kernels::{Block, KernelConstants};
 use crate::quadrature::ElementQuad;
-use crate::singular::g_diagonal;
 use crate::{
-    BemError, Control, Loads, Material, MemoryEstimate, QuadratureParams, SolveParams, Stage,
-    SurfaceMesh,
+    BemError, Control, ElementKind, Loads, Material, MemoryEstimate, SolveParams, Stage,
+    SurfaceMesh, tangent_frame,
 };
 
 /// What to do with a problem that prescribes no displacement anywhere (rigid-body modes).
@@ -36,15 +36,20 @@ pub enum RigidModes {
 }
 
 /// The assembled dense system: `matrix · x = rhs`, x = (u on traction-prescribed elements,
-/// t on displacement-prescribed ones) per element in element order, one column per load case.
+/// t on displacement-prescribed ones, (normal traction, tangential displacement in
+/// [`tangent_frame`]) on sliding ones) per element in element order, one column per load case.
 #[derive(Debug, Clone)]
 pub struct LinearSystem {
     /// K (3N × 3N, or 3N+6 with the gauge fixed).
     pub matrix: DenseMatrix,
     /// Right-hand sides, one column per load case.
     pub rhs: Mat<f64>,
-    /// Which elements have a prescribed displacement.
+    /// Which elements have a prescribed displacement ([`ElementKind::Displacement`]).
     pub prescribed: Vec<bool>,
+    /// What is prescribed on each element.
+    pub kinds: Vec<ElementKind>,
+    /// Unit normal of each element (the frame of a sliding element's unknowns).
+    pub normals: Vec<DVec3>,
     /// The prescribed values (copied for unpacking the solution).
     pub loads: Loads,
     /// Whether six gauge rows/columns were appended.
@@ -61,11 +66,11 @@ const REDUCTION_RANGES: usize = 64;
 
 /// Accumulators of one column range: H row sums and, once a column of the range carries a load,
 /// its contributions to the right-hand sides.
-struct Partial {
-    row_sums: Vec<Block>,
-    rhs: Option<Vec<f64>>,
-    rhs_len: usize,
-    quadrature: AssemblyReport,
+pub(crate) struct Partial {
+    pub(crate) row_sums: Vec<Block>,
+    pub(crate) rhs: Option<Vec<f64>>,
+    pub(crate) rhs_len: usize,
+    pub(crate) quadrature: AssemblyReport,
 }
 
 impl Partial {
@@ -102,7 +107,7 @@ pub struct AssemblyReport {
 }
 
 impl AssemblyReport {
-    fn note(&mut self, block: UnconvergedBlock) {
+    pub(crate) fn note(&mut self, block: UnconvergedBlock) {
         self.unconverged_blocks += 1;
         if self
             .worst
@@ -219,9 +224,64 @@ impl LinearSystem {
         params: &SolveParams,
         control: &Control<'_>,
     ) -> Result<Self, BemError> {
+        if prescribed.len() != mesh.element_count() {
+            return Err(BemError::WrongLength {
+                what: "prescribed mask",
+                expected: mesh.element_count(),
+                got: prescribed.len(),
+            });
+        }
+        let kinds = ElementKind::from_mask(prescribed);
+        Self::assemble_kinds(mesh, material, &kinds, loads, params, control)
+    }
+
+    /// [`LinearSystem::assemble`] with any [`ElementKind`] per element, including sliding
+    /// contact. A body is held when some element of it is displacement-prescribed or sliding
+    /// (sliding on one plane alone leaves it free to slide: the condition check refuses that).
+    ///
+    /// ```
+    /// use bem_core::{shapes, Control, ElementKind, LinearSystem, Loads, Material, SolveParams};
+    /// use glam::DVec3;
+    /// let mesh = shapes::sphere(1, 1.0).unwrap();
+    /// let n = mesh.element_count();
+    /// // lower cap fixed, a band above it sliding on its support, the top pushed down
+    /// let kinds: Vec<ElementKind> = mesh
+    ///     .centroids()
+    ///     .iter()
+    ///     .map(|c| match c.z {
+    ///         z if z < -0.5 => ElementKind::Displacement,
+    ///         z if z < 0.0 => ElementKind::Sliding,
+    ///         _ => ElementKind::Traction,
+    ///     })
+    ///     .collect();
+    /// let mut loads = Loads::new(n, 1);
+    /// for e in (0..n).filter(|&e| mesh.centroid(e).z > 0.5) {
+    ///     loads.set(e, 0, -0.001 * mesh.normal(e)).unwrap();
+    /// }
+    /// let m = Material::new(0.45, 1.0).unwrap();
+    /// let system = LinearSystem::assemble_kinds(&mesh, &m, &kinds, &loads, &SolveParams::default(), &Control::default()).unwrap();
+    /// let s = system.solve(&Control::default()).unwrap().remove(0);
+    /// // sliding elements stay on their support: no normal displacement
+    /// for e in (0..n).filter(|&e| kinds[e] == ElementKind::Sliding) {
+    ///     assert!(s.displacement[e].dot(mesh.normal(e)).abs() < 1e-12);
+    /// }
+    /// ```
+    pub fn assemble_kinds(
+        mesh: &SurfaceMesh,
+        material: &Material,
+        kinds: &[ElementKind],
+        loads: &Loads,
+        params: &SolveParams,
+        control: &Control<'_>,
+    ) -> Result<Self, BemError> {
         let n = mesh.element_count();
+        let prescribed: Vec<bool> = kinds
+            .iter()
+            .map(|&k| k == ElementKind::Displacement)
+            .collect();
+        let held: Vec<bool> = kinds.iter().map(|&k| k != ElementKind::Traction).collect();
         for (what, got) in [
-            ("prescribed mask", prescribed.len()),
+            ("element kinds", kinds.len()),
             ("loads", loads.element_count()),
         ] {
             if got != n {
@@ -232,7 +292,7 @@ impl LinearSystem {
                 });
             }
         }
-        let gauge_fixed = check_bodies_held(mesh, prescribed, params.rigid_modes)?;
+        let gauge_fixed = check_bodies_held(mesh, &held, params.rigid_modes)?;
         control.check()?;
         // assemble in coordinates relative to the mesh's centre: translation invariance
         let local = mesh.recentred();
@@ -306,7 +366,7 @@ impl LinearSystem {
                             centroids,
                             &consts,
                             &qp,
-                            prescribed[j],
+                            kinds[j],
                             loads.of(j),
                             mesh,
                             material,
@@ -352,18 +412,35 @@ impl LinearSystem {
         for i in 0..n {
             let s = row_sums[i];
             let h_ii: Block = std::array::from_fn(|a| std::array::from_fn(|b| -s[a][b]));
-            if prescribed[i] {
-                for &(r, u) in loads.of(i) {
-                    let u = u.to_array();
-                    for a in 0..3 {
-                        rhs[(3 * i + a, r as usize)] -=
-                            h_ii[a][0] * u[0] + h_ii[a][1] * u[1] + h_ii[a][2] * u[2];
+            match kinds[i] {
+                ElementKind::Displacement => {
+                    for &(r, u) in loads.of(i) {
+                        let hu = block_times(&h_ii, u);
+                        for a in 0..3 {
+                            rhs[(3 * i + a, r as usize)] -= hu[a];
+                        }
                     }
                 }
-            } else {
-                for a in 0..3 {
-                    for b in 0..3 {
-                        matrix[(3 * i + a, 3 * i + b)] = h_ii[a][b];
+                ElementKind::Traction => {
+                    for a in 0..3 {
+                        for b in 0..3 {
+                            matrix[(3 * i + a, 3 * i + b)] = h_ii[a][b];
+                        }
+                    }
+                }
+                ElementKind::Sliding => {
+                    let normal = mesh.normal(i);
+                    let (t1, t2) = tangent_frame(normal);
+                    let (h1, h2) = (block_times(&h_ii, t1), block_times(&h_ii, t2));
+                    for a in 0..3 {
+                        matrix[(3 * i + a, 3 * i + 1)] = h1[a];
+                        matrix[(3 * i + a, 3 * i + 2)] = h2[a];
+                    }
+                    for &(r, v) in loads.of(i) {
+                        let hu = block_times(&h_ii, normal * v.dot(normal));
+                        for a in 0..3 {
+                            rhs[(3 * i + a, r as usize)] -= hu[a];
+                        }
                     }
                 }
             }
@@ -372,7 +449,9 @@ impl LinearSystem {
         Ok(Self {
             matrix,
             rhs,
-            prescribed: prescribed.to_vec(),
+            prescribed,
+            kinds: kinds.to_vec(),
+            normals: mesh.normals().to_vec(),
             loads: loads.clone(),
             gauge_fixed,
             max_condition: params.max_condition,
@@ -381,17 +460,17 @@ impl LinearSystem {
     }
 }
 
-/// Every body must be held: some element of it displacement-prescribed. A problem with nothing
-/// prescribed at all is rejected ([`BemError::PureTraction`]) or, with [`RigidModes::Fix`] and a
+/// Every body must be held: some element of it displacement-prescribed or sliding (`held`). A
+/// problem with nothing prescribed at all is rejected ([`BemError::PureTraction`]) or, with [`RigidModes::Fix`] and a
 /// single body, gauge-fixed (returns true); otherwise a body without prescribed displacement is a
 /// [`BemError::FloatingBody`].
 fn check_bodies_held(
     mesh: &SurfaceMesh,
-    prescribed: &[bool],
+    held_mask: &[bool],
     rigid_modes: RigidModes,
 ) -> Result<bool, BemError> {
     let bodies = mesh.body_count();
-    if !prescribed.iter().any(|&p| p) {
+    if !held_mask.iter().any(|&p| p) {
         match rigid_modes {
             RigidModes::Reject => return Err(BemError::PureTraction),
             RigidModes::Fix if bodies <= 1 => return Ok(true),
@@ -400,7 +479,7 @@ fn check_bodies_held(
     }
     let mut held = vec![false; bodies];
     let mut first = vec![usize::MAX; bodies];
-    for (e, &p) in prescribed.iter().enumerate() {
+    for (e, &p) in held_mask.iter().enumerate() {
         let b = mesh.body(e);
         held[b] |= p;
         first[b] = first[b].min(e);
@@ -413,224 +492,4 @@ fn check_bodies_held(
         }),
         None => Ok(false),
     }
-}
-
-/// Fills column block `j` of K and accumulates its contributions to the row sums and the rhs.
-#[allow(clippy::too_many_arguments)] // one column task's whole context
-fn assemble_column(
-    j: usize,
-    cols: [&mut [f64]; 3],
-    quads: &[ElementQuad],
-    centroids: &[DVec3],
-    consts: &KernelConstants,
-    qp: &QuadratureParams,
-    is_prescribed: bool,
-    values: &[(u32, DVec3)],
-    mesh: &SurfaceMesh,
-    material: &Material,
-    partial: &mut Partial,
-    dof: usize,
-    modes: Option<&[Vec<DVec3>; 6]>,
-) -> Result<(), BemError> {
-    let [c0, c1, c2] = cols;
-    let q = &quads[j];
-    let need_u = is_prescribed || !values.is_empty();
-    let n = quads.len();
-    let rhs_len = partial.rhs_len;
-    let (row_sums, report, mut rhs) = (
-        &mut partial.row_sums,
-        &mut partial.quadrature,
-        (!values.is_empty()).then(|| partial.rhs.get_or_insert_with(|| vec![0.0; rhs_len])),
-    );
-    for (i, &p) in centroids.iter().enumerate().take(n) {
-        if i == j {
-            continue;
-        }
-        let (m, estimated_error) = q.moments(p, qp, need_u);
-        if estimated_error > qp.tolerance {
-            report.note(UnconvergedBlock {
-                row_element: i,
-                column_element: j,
-                estimated_error,
-            });
-        }
-        let h = consts.t_block(&m, q.normal);
-        let rs = &mut row_sums[i];
-        for a in 0..3 {
-            for b in 0..3 {
-                rs[a][b] += h[a][b];
-            }
-        }
-        let row = 3 * i;
-        if is_prescribed {
-            let g = consts.u_block(&m);
-            for a in 0..3 {
-                c0[row + a] = -g[a][0];
-                c1[row + a] = -g[a][1];
-                c2[row + a] = -g[a][2];
-            }
-            if let Some(rhs) = rhs.as_deref_mut() {
-                for &(r, u) in values {
-                    let y = &mut rhs[r as usize * dof + row..r as usize * dof + row + 3];
-                    for a in 0..3 {
-                        y[a] -= h[a][0] * u.x + h[a][1] * u.y + h[a][2] * u.z;
-                    }
-                }
-            }
-        } else {
-            for a in 0..3 {
-                c0[row + a] = h[a][0];
-                c1[row + a] = h[a][1];
-                c2[row + a] = h[a][2];
-            }
-            if let Some(rhs) = rhs.as_deref_mut() {
-                let g = consts.u_block(&m);
-                for &(r, t) in values {
-                    let y = &mut rhs[r as usize * dof + row..r as usize * dof + row + 3];
-                    for a in 0..3 {
-                        y[a] += g[a][0] * t.x + g[a][1] * t.y + g[a][2] * t.z;
-                    }
-                }
-            }
-        }
-    }
-    // singular diagonal G block (analytic)
-    if need_u {
-        let g = g_diagonal(mesh, j, material).ok_or(BemError::Internal {
-            what: "analytic diagonal G block: centroid not inside its (validated) element",
-        })?;
-        let row = 3 * j;
-        if is_prescribed {
-            for a in 0..3 {
-                c0[row + a] = -g[a][0];
-                c1[row + a] = -g[a][1];
-                c2[row + a] = -g[a][2];
-            }
-        } else if let Some(rhs) = rhs {
-            for &(r, t) in values {
-                let y = &mut rhs[r as usize * dof + row..r as usize * dof + row + 3];
-                for a in 0..3 {
-                    y[a] += g[a][0] * t.x + g[a][1] * t.y + g[a][2] * t.z;
-                }
-            }
-        }
-    }
-    // gauge rows: Rᵀ
-    if let Some(modes) = modes {
-        for (k, mode) in modes.iter().enumerate() {
-            let v = mode[j];
-            c0[dof + k] = v.x;
-            c1[dof + k] = v.y;
-            c2[dof + k] = v.z;
-        }
-    }
-    Ok(())
-}
-
-/// Full H and G matrices (3N × 3N each) assembled naively and single-threaded, element pair by
-/// element pair with full kernel matrices at every quadrature point. For small meshes, research
-/// and tests, and as the naive baseline of the benchmark; the solver never calls it.
-/// `H` includes the rigid-body diagonal blocks, `G` the analytic ones.
-pub fn assemble_h_g(
-    mesh: &SurfaceMesh,
-    material: &Material,
-    params: &QuadratureParams,
-) -> Result<(Mat<f64>, Mat<f64>), BemError> {
-    use crate::kernels::{kelvin_t, kelvin_u};
-    let local = mesh.recentred();
-    let mesh = &local;
-    let n = mesh.element_count();
-    let mut h = try_zeros(3 * n, 3 * n)?;
-    let mut g = try_zeros(3 * n, 3 * n)?;
-    for i in 0..n {
-        let p = mesh.centroid(i);
-        let mut diag = [[0.0; 3]; 3];
-        for j in 0..n {
-            let (hb, gb) = if i == j {
-                let gb = g_diagonal(mesh, j, material).ok_or(BemError::Internal {
-                    what: "analytic diagonal G block: centroid not inside its (validated) element",
-                })?;
-                ([[0.0; 3]; 3], gb)
-            } else {
-                let mut points = Vec::new();
-                collect_points(
-                    p,
-                    mesh.corners(j),
-                    mesh.area(j),
-                    mesh.longest_edge(j),
-                    params,
-                    &mut points,
-                );
-                let nj = mesh.normal(j);
-                let mut hb = [[0.0; 3]; 3];
-                let mut gb = [[0.0; 3]; 3];
-                for (q, w) in points {
-                    let t = kelvin_t(q - p, nj, material);
-                    let u = kelvin_u(q - p, material);
-                    for a in 0..3 {
-                        for b in 0..3 {
-                            hb[a][b] += w * t[a][b];
-                            gb[a][b] += w * u[a][b];
-                        }
-                    }
-                }
-                (hb, gb)
-            };
-            for a in 0..3 {
-                for b in 0..3 {
-                    h[(3 * i + a, 3 * j + b)] = hb[a][b];
-                    g[(3 * i + a, 3 * j + b)] = gb[a][b];
-                    diag[a][b] -= hb[a][b];
-                }
-            }
-        }
-        for a in 0..3 {
-            for b in 0..3 {
-                h[(3 * i + a, 3 * i + b)] = diag[a][b];
-            }
-        }
-    }
-    Ok((h, g))
-}
-
-/// Quadrature points of the adaptive rule (same subdivision as the assembly) as a list.
-fn collect_points(
-    p: DVec3,
-    c: [DVec3; 3],
-    area: f64,
-    longest: f64,
-    params: &QuadratureParams,
-    out: &mut Vec<(DVec3, f64)>,
-) {
-    use crate::quadrature::{point_triangle_distance, seven_points, visit_leaves};
-    let limit = if params.max_depth == 0 {
-        0
-    } else {
-        params.depth_limit(longest, point_triangle_distance(p, c))
-    };
-    visit_leaves(
-        p,
-        c,
-        area,
-        params.near_factor,
-        0,
-        limit,
-        &mut |c, area, at_limit| {
-            if at_limit && limit > 0 {
-                let m01 = 0.5 * (c[0] + c[1]);
-                let m12 = 0.5 * (c[1] + c[2]);
-                let m20 = 0.5 * (c[2] + c[0]);
-                for sub in [
-                    [c[0], m01, m20],
-                    [m01, c[1], m12],
-                    [m20, m12, c[2]],
-                    [m01, m12, m20],
-                ] {
-                    out.extend(seven_points(sub, 0.25 * area));
-                }
-            } else {
-                out.extend(seven_points(c, area));
-            }
-        },
-    );
 }

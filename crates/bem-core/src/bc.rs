@@ -30,6 +30,70 @@ impl BoundaryCondition {
     }
 }
 
+/// What is prescribed on an element in every load case of a [`crate::LinearSystem`] (the
+/// split of the unknowns; the values come from [`Loads`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
+pub enum ElementKind {
+    /// The traction is prescribed (zero unless a load case sets it): u is unknown.
+    Traction,
+    /// The displacement is prescribed: t is unknown.
+    Displacement,
+    /// Frictionless contact with a rigid support along the element's own normal n (tissue
+    /// sliding on bone or teeth): the normal displacement `u·n` and the tangential traction
+    /// are prescribed, the normal traction and the tangential displacement are unknown. A load
+    /// value `v` on such an element prescribes `u·n = v·n` and the tangential traction
+    /// `v − (v·n) n` (zero by default: it stays on its support and slides freely).
+    Sliding,
+}
+
+impl ElementKind {
+    /// The kinds of a displacement/traction mask (`true` = displacement prescribed).
+    ///
+    /// ```
+    /// use bem_core::ElementKind;
+    /// assert_eq!(
+    ///     ElementKind::from_mask(&[true, false]),
+    ///     vec![ElementKind::Displacement, ElementKind::Traction]
+    /// );
+    /// ```
+    pub fn from_mask(prescribed: &[bool]) -> Vec<ElementKind> {
+        prescribed
+            .iter()
+            .map(|&p| {
+                if p {
+                    ElementKind::Displacement
+                } else {
+                    ElementKind::Traction
+                }
+            })
+            .collect()
+    }
+}
+
+/// An orthonormal tangent pair `(t1, t2)` of unit normal `n` with `t1 × t2 = n`, chosen
+/// deterministically (t1 ⟂ the coordinate axis least aligned with n).
+///
+/// ```
+/// use glam::DVec3;
+/// let n = DVec3::new(0.0, 0.6, 0.8);
+/// let (t1, t2) = bem_core::tangent_frame(n);
+/// assert!(t1.dot(n).abs() < 1e-12 && t2.dot(n).abs() < 1e-12 && t1.dot(t2).abs() < 1e-12);
+/// assert!((t1.cross(t2) - n).length() < 1e-12);
+/// ```
+pub fn tangent_frame(n: DVec3) -> (DVec3, DVec3) {
+    let a = n.abs();
+    let axis = if a.x <= a.y && a.x <= a.z {
+        DVec3::X
+    } else if a.y <= a.z {
+        DVec3::Y
+    } else {
+        DVec3::Z
+    };
+    let t1 = n.cross(axis).normalize_or_zero();
+    let t2 = n.cross(t1);
+    (t1, t2)
+}
+
 /// Prescribed values for several right-hand sides, stored sparsely per element: the displacement
 /// of a displacement-prescribed element or the traction of a traction-prescribed one. Values not
 /// set are zero.

@@ -3,8 +3,8 @@
 use glam::DVec3;
 
 use crate::{
-    BemError, Control, LinearSystem, Loads, Material, Solution, SolveParams, SolveReport,
-    SurfaceMesh,
+    BemError, Control, ElementKind, LinearSystem, Loads, Material, Solution, SolveParams,
+    SolveReport, SurfaceMesh,
 };
 
 /// A load pattern: `(element, value)`, the displacement of a displacement-prescribed element or
@@ -63,6 +63,29 @@ impl ResponseBasis {
                 got: prescribed.len(),
             });
         }
+        let kinds = ElementKind::from_mask(prescribed);
+        Self::compute_kinds(mesh, material, &kinds, groups, params, control)
+    }
+
+    /// [`ResponseBasis::compute`] with any [`ElementKind`] per element: sliding elements keep
+    /// zero normal displacement and zero tangential traction except where a group sets a value
+    /// (its normal part a normal displacement, the rest a tangential traction).
+    pub fn compute_kinds(
+        mesh: &SurfaceMesh,
+        material: &Material,
+        kinds: &[ElementKind],
+        groups: &[DisplacementGroup],
+        params: &SolveParams,
+        control: &Control<'_>,
+    ) -> Result<Self, BemError> {
+        let n = mesh.element_count();
+        if kinds.len() != n {
+            return Err(BemError::WrongLength {
+                what: "element kinds",
+                expected: n,
+                got: kinds.len(),
+            });
+        }
         let mut loads = Loads::new(n, groups.len());
         for (g, group) in groups.iter().enumerate() {
             for &(element, value) in group {
@@ -76,7 +99,7 @@ impl ResponseBasis {
                 loads.set(element, g, value)?;
             }
         }
-        let system = LinearSystem::assemble(mesh, material, prescribed, &loads, params, control)?;
+        let system = LinearSystem::assemble_kinds(mesh, material, kinds, &loads, params, control)?;
         let (responses, report) = system.solve_with_report(control)?;
         Ok(Self { responses, report })
     }

@@ -4,8 +4,8 @@ use glam::DVec3;
 
 use crate::budget::SOLVE_BLOCK;
 use crate::{
-    BemError, BoundaryCondition, Control, DenseLu, LinearSystem, Loads, Material, QuadratureParams,
-    RigidModes, Stage, SurfaceMesh,
+    BemError, BoundaryCondition, Control, DenseLu, ElementKind, LinearSystem, Loads, Material,
+    QuadratureParams, RigidModes, Stage, SurfaceMesh, tangent_frame,
 };
 
 /// Default of [`SolveParams::max_condition`]: solves whose estimated condition number (columns
@@ -84,7 +84,8 @@ impl LinearSystem {
         let LinearSystem {
             matrix,
             mut rhs,
-            prescribed,
+            kinds,
+            normals,
             loads,
             max_condition,
             quadrature,
@@ -112,20 +113,30 @@ impl LinearSystem {
         }
         drop(lu);
         control.report(Stage::Solve, count, count);
-        let n = prescribed.len();
+        let n = kinds.len();
         let solutions = (0..count)
             .map(|r| {
                 let mut displacement = Vec::with_capacity(n);
                 let mut traction = Vec::with_capacity(n);
-                for (e, &p) in prescribed.iter().enumerate() {
+                for (e, &kind) in kinds.iter().enumerate() {
                     let x = DVec3::new(rhs[(3 * e, r)], rhs[(3 * e + 1, r)], rhs[(3 * e + 2, r)]);
                     let known = loads.get(e, r);
-                    if p {
-                        displacement.push(known);
-                        traction.push(x);
-                    } else {
-                        displacement.push(x);
-                        traction.push(known);
+                    match kind {
+                        ElementKind::Displacement => {
+                            displacement.push(known);
+                            traction.push(x);
+                        }
+                        ElementKind::Traction => {
+                            displacement.push(x);
+                            traction.push(known);
+                        }
+                        ElementKind::Sliding => {
+                            let normal = normals[e];
+                            let (t1, t2) = tangent_frame(normal);
+                            let un = normal * known.dot(normal);
+                            displacement.push(un + t1 * x.y + t2 * x.z);
+                            traction.push(normal * x.x + (known - un));
+                        }
                     }
                 }
                 Solution {

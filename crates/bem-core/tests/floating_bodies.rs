@@ -188,6 +188,10 @@ fn condition_estimate_refuses_the_floating_sphere_system() {
         matrix: DenseMatrix::from(&k),
         rhs,
         prescribed: bcs.iter().map(|b| b.is_displacement()).collect(),
+        kinds: bem_core::ElementKind::from_mask(
+            &bcs.iter().map(|b| b.is_displacement()).collect::<Vec<_>>(),
+        ),
+        normals: mesh.normals().to_vec(),
         loads,
         gauge_fixed: false,
         max_condition: DEFAULT_MAX_CONDITION,
