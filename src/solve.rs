@@ -2,7 +2,7 @@
 
 use std::sync::atomic::AtomicBool;
 
-use bem_core::{Material, QuadratureParams, ResponseBasis, SolveParams, SurfaceMesh};
+use bem_core::{ElementKind, Material, QuadratureParams, ResponseBasis, SolveParams, SurfaceMesh};
 use face_prep::FaceRig;
 use face_prep::muscle_model::MuscleModel;
 use glam::DVec3;
@@ -22,10 +22,10 @@ pub(crate) struct Solved {
 
 /// Solves the rig's BEM problem: skull elements fixed at zero, every element of a
 /// displacement-driven muscle displacement-prescribed (zero, except in its own muscle's
-/// right-hand side, where it follows the muscle's pattern), all other elements traction-type:
-/// free, except a force-driven control's elements in its own right-hand side
-/// ([`face_prep::force_controls`]; that response is scaled to its target). One LU, one
-/// right-hand side per control.
+/// right-hand side, where it follows the muscle's pattern), the deep layer on the teeth sliding
+/// ([`face_prep::teeth`]), all other elements traction-type: free, except a force-driven
+/// control's elements in its own right-hand side ([`face_prep::force_controls`]; that response
+/// is scaled to its target). One LU, one right-hand side per control.
 pub(crate) fn solve_rig(
     rig: &FaceRig,
     poisson: f64,
@@ -35,23 +35,45 @@ pub(crate) fn solve_rig(
     let mesh = SurfaceMesh::new(rig.shell.vertices.clone(), rig.shell.triangles.clone())?;
     let material = Material::new(poisson, 1.0)?;
     let n = mesh.element_count();
-    let mut prescribed = vec![false; n];
+    let mut kinds = vec![ElementKind::Traction; n];
     for &e in &rig.skull {
-        prescribed[e as usize] = true;
+        kinds[e as usize] = ElementKind::Displacement;
     }
     // Force-driven controls load traction-type elements (free in every other response).
     for (k, m) in rig.muscles.iter().enumerate() {
         if !rig.is_force_control(k) {
             for e in m.elements() {
-                prescribed[e as usize] = true;
+                kinds[e as usize] = ElementKind::Displacement;
             }
         }
     }
+    // The deep layer on the teeth slides ([`face_prep::teeth`]; disjoint from the above).
+    for e in rig.sliding_elements() {
+        kinds[e as usize] = ElementKind::Sliding;
+    }
     let groups: Vec<Vec<(usize, DVec3)>> = (0..rig.muscles.len())
         .map(|k| {
+            let force = rig.is_force_control(k);
             rig.muscle_pattern(k)
                 .into_iter()
-                .map(|(e, d)| (e as usize, d))
+                .map(|(e, d)| {
+                    let e = e as usize;
+                    if kinds[e] != ElementKind::Sliding {
+                        return (e, d);
+                    }
+                    // On a sliding element a force pulls along the teeth (its tangential part);
+                    // a displacement (the jaw's lower teeth) moves it along their normal.
+                    let normal = mesh.normal(e);
+                    let along_normal = normal * d.dot(normal);
+                    (
+                        e,
+                        if force {
+                            d - along_normal
+                        } else {
+                            along_normal
+                        },
+                    )
+                })
                 .collect()
         })
         .collect();
@@ -72,18 +94,12 @@ pub(crate) fn solve_rig(
         quadrature,
         ..SolveParams::default()
     };
-    let basis = ResponseBasis::compute(
-        &mesh,
-        &material,
-        &prescribed,
-        &groups,
-        &params,
-        &bem_control,
-    )
-    .map_err(|e| match e {
-        bem_core::BemError::Cancelled => PipelineError::Cancelled,
-        e => PipelineError::Bem(e),
-    })?;
+    let basis =
+        ResponseBasis::compute_kinds(&mesh, &material, &kinds, &groups, &params, &bem_control)
+            .map_err(|e| match e {
+                bem_core::BemError::Cancelled => PipelineError::Cancelled,
+                e => PipelineError::Bem(e),
+            })?;
     let report = basis.report;
     let element: Vec<Vec<DVec3>> = basis
         .responses

@@ -103,7 +103,7 @@ fn ict_2500_cheeks_puff_out() {
 }
 
 /// The cheek puff loads only traction-type elements: none of them is a skull element or an
-/// element of a displacement-driven muscle, so every other response is what it was without it.
+/// element of a displacement-driven control, so every other response is what it was without it.
 #[test]
 fn cheek_puff_leaves_the_prescribed_elements_alone() {
     let mesh = face_prep::load_face(&support::asset(support::FACES[0])).unwrap();
@@ -112,8 +112,9 @@ fn cheek_puff_leaves_the_prescribed_elements_alone() {
     assert!(rig.is_force_control(k));
     let mine: Vec<u32> = rig.muscles[k].elements().collect();
     assert!(mine.len() > 10, "{} elements", mine.len());
+    // Other force-driven controls may load the same elements (a traction in their own response).
     for (j, m) in rig.muscles.iter().enumerate() {
-        if j != k {
+        if j != k && !rig.is_force_control(j) {
             assert!(
                 m.elements().all(|e| !mine.contains(&e)),
                 "shares with {}",

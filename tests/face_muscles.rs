@@ -1,7 +1,9 @@
-//! The force-driven brow muscles added after the thesis's ten (issue 11, item 3: corrugator
-//! supercilii, procerus), through the ARKit names that use them, on every bundled face at its
-//! detected unit:
+//! The force-driven muscles added after the thesis's ten (issue 11, item 3), through the ARKit
+//! names that use them, on every bundled face at its detected unit:
 //!
+//! - `mouthPucker` = 1 (orbicularis oris) narrows the mouth (corner to corner) by ≥ 20 %;
+//! - `mouthFrownLeft` = 1 (depressor anguli oris) moves the left mouth corner down ≥ 3 mm, and
+//!   the right corner less than a quarter of that;
 //! - `browDownLeft` = 1 (corrugator) moves the left inner brow down and toward the midline,
 //!   ≥ 3 mm in all, and the right inner brow less than a quarter of that;
 //! - every new left/right pair is balanced: the left control's largest motion is within 25 % of
@@ -41,6 +43,43 @@ fn sliders_mm(m: &FaceModel, lm: &FaceLandmarks, sliders: &[f64]) -> Vec<DVec3> 
         .zip(&m.mesh.vertices)
         .map(|(p, q)| lm.canonical_mm(*p - *q))
         .collect()
+}
+
+fn canonical_x(m: &FaceModel, lm: &FaceLandmarks, v: u32) -> f64 {
+    lm.canonical_mm(m.mesh.vertices[v as usize] - DVec3::ZERO).x
+}
+
+fn pucker_narrows_the_mouth(face: usize) {
+    let m = model(face);
+    let lm = FaceLandmarks::of(m).unwrap();
+    let d = expression_mm(m, &lm, "mouthPucker");
+    let (l, r) = (lm.mouth_corner_l, lm.mouth_corner_r);
+    let width0 = canonical_x(m, &lm, l) - canonical_x(m, &lm, r);
+    let width1 = width0 + d[l as usize].x - d[r as usize].x;
+    let narrowing = 1.0 - width1 / width0;
+    println!(
+        "face {face}: mouthPucker narrows the mouth by {:.1} %",
+        100.0 * narrowing
+    );
+    assert!(
+        narrowing >= 0.20,
+        "mouthPucker narrows the mouth by {:.1} % (width {width0:.1} → {width1:.1} mm)",
+        100.0 * narrowing
+    );
+}
+
+fn frown_pulls_the_left_corner_down(face: usize) {
+    let m = model(face);
+    let lm = FaceLandmarks::of(m).unwrap();
+    let d = expression_mm(m, &lm, "mouthFrownLeft");
+    let left = d[lm.mouth_corner_l as usize];
+    let right = d[lm.mouth_corner_r as usize];
+    println!("face {face}: mouthFrownLeft corner L {left:.2} R {right:.2} mm");
+    assert!(left.y <= -3.0, "left corner moves {left:?} mm");
+    assert!(
+        right.length() < 0.25 * left.y.abs(),
+        "right corner moves {right:?} mm against the left's {left:?}"
+    );
 }
 
 fn brow_down_pulls_the_inner_brow_down_and_in(face: usize) {
@@ -155,6 +194,14 @@ fn new_pairs_are_balanced(face: usize) {
 macro_rules! face_tests {
     ($name:ident, $face:expr) => {
         mod $name {
+            #[test]
+            fn pucker_narrows_the_mouth() {
+                super::pucker_narrows_the_mouth($face);
+            }
+            #[test]
+            fn frown_pulls_the_left_corner_down() {
+                super::frown_pulls_the_left_corner_down($face);
+            }
             #[test]
             fn procerus_pulls_the_glabella_down() {
                 super::procerus_pulls_the_glabella_down($face);

@@ -23,9 +23,10 @@ pub const MAGIC: [u8; 8] = *b"FACEBEM\x1a";
 /// `FaceRig::unit`; 6: `PrecomputeReport::condition_estimate`; 7: `quadrature_unconverged` and
 /// `quadrature_worst_error`, `QuadratureParams::tolerance`; 8: the control table's rows, the
 /// force-driven `cheek_puff`; 9: the anatomical rig's eyelid controls, `Generator::Lid`, and lid
-/// back elements no longer skull; 10: seventeen force-driven muscle controls, `Generator::Force`
-/// and `Generator::Sphincter`).
-pub const FORMAT_VERSION: u32 = 10;
+/// back elements no longer skull; 10: the force-driven brow muscles, `Generator::Force`; 11: the
+/// teeth (sliding deep layer), a force-driven zygomaticus, the mouth's muscles and
+/// `Generator::Sphincter`).
+pub const FORMAT_VERSION: u32 = 11;
 /// Size of the fixed header in bytes.
 pub const HEADER_LEN: usize = 8 + 4 + 32 + 32 + 8 + 32;
 

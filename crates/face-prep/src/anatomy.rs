@@ -256,3 +256,87 @@ pub fn procerus(l: &Landmarks) -> Attachment {
         spread_mm: 0.0,
     }
 }
+
+/// Depressor anguli oris (face's left): oblique line of the mandible, below and lateral of the
+/// mouth corner → modiolus (pulls the corner down and a little out: AU15, the frown).
+pub fn depressor_anguli_oris(l: &Landmarks) -> Attachment {
+    let corner = DVec2::new(l.mouth.x + l.mouth_half_width, l.mouth.y);
+    Attachment {
+        origin: DVec2::new(corner.x + 0.12 * l.iod, l.mouth.y - 0.55 * l.h),
+        insertion: corner,
+        half_width_mm: 7.0,
+        max_strain: 0.2,
+        spread_mm: 0.0,
+    }
+}
+
+/// Risorius (face's left): parotid fascia over the masseter, lateral at mouth height →
+/// modiolus (pulls the corner straight out: AU20, the lip stretcher).
+pub fn risorius(l: &Landmarks) -> Attachment {
+    let corner = DVec2::new(l.mouth.x + l.mouth_half_width, l.mouth.y);
+    Attachment {
+        origin: DVec2::new(corner.x + 0.75 * l.iod, l.mouth.y + 0.05 * l.h),
+        insertion: corner,
+        half_width_mm: 6.0,
+        max_strain: 0.15,
+        spread_mm: 0.0,
+    }
+}
+
+/// Levator labii superioris alaeque nasi (face's left): frontal process of the maxilla beside
+/// the inner eye corner → nasal ala and the upper lip beside the philtrum (AU9, the nose
+/// wrinkler / sneer).
+pub fn levator_labii_superioris_alaeque_nasi(l: &Landmarks) -> Attachment {
+    let eye = left_eye(l);
+    Attachment {
+        origin: DVec2::new(eye.x - l.eye_half_width - 0.02 * l.iod, eye.y - 0.05 * l.h),
+        insertion: DVec2::new(
+            l.mouth.x + 0.3 * l.mouth_half_width,
+            l.mouth_top + 0.05 * l.iod,
+        ),
+        half_width_mm: 5.0,
+        max_strain: 0.15,
+        spread_mm: 0.0,
+    }
+}
+
+/// Zygomaticus minor (face's left): zygomatic bone, medial and below the major's origin →
+/// upper lip, lateral part (AU13 with the levator anguli oris: the cheek puffer / sharp lip
+/// puller; deepens the nasolabial fold).
+pub fn zygomaticus_minor(l: &Landmarks) -> Attachment {
+    let eye = left_eye(l);
+    Attachment {
+        origin: DVec2::new(eye.x + 0.3 * l.eye_half_width, eye.y - 0.3 * l.h),
+        insertion: DVec2::new(l.mouth.x + 0.7 * l.mouth_half_width, l.mouth_top),
+        half_width_mm: 5.0,
+        max_strain: 0.15,
+        spread_mm: 0.0,
+    }
+}
+
+/// Levator anguli oris (face's left): canine fossa of the maxilla, below the infraorbital
+/// foramen → modiolus (lifts the corner straight up: AU13).
+pub fn levator_anguli_oris(l: &Landmarks) -> Attachment {
+    let eye = left_eye(l);
+    let corner = DVec2::new(l.mouth.x + l.mouth_half_width, l.mouth.y);
+    Attachment {
+        origin: DVec2::new(eye.x - 0.1 * l.iod, eye.y - 0.55 * l.h),
+        insertion: corner,
+        half_width_mm: 6.0,
+        max_strain: 0.2,
+        spread_mm: 0.0,
+    }
+}
+
+/// Buccinator (face's left): pterygomandibular raphe and the alveolar processes at the molars
+/// → modiolus (pulls the corner back and presses the cheek to the teeth: AU14, the dimpler).
+pub fn buccinator(l: &Landmarks) -> Attachment {
+    let corner = DVec2::new(l.mouth.x + l.mouth_half_width, l.mouth.y);
+    Attachment {
+        origin: DVec2::new(corner.x + 0.45 * l.iod, l.mouth.y - 0.02 * l.h),
+        insertion: corner,
+        half_width_mm: 9.0,
+        max_strain: 0.12,
+        spread_mm: 0.0,
+    }
+}

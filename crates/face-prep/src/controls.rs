@@ -38,6 +38,14 @@ impl FaceRig {
                 ),
                 None => (Vec::new(), Vec::new()),
             },
+            Generator::Sphincter(lip) => crate::force_controls::place_sphincter(
+                &self.shell,
+                skull,
+                &self.mouth_xy(),
+                self.boxes.mouth.center().y,
+                lip,
+                self.mm_per_unit(),
+            ),
             Generator::Pressure => (
                 Vec::new(),
                 crate::force_controls::place_cheek_puff(
@@ -77,6 +85,7 @@ impl FaceRig {
                 ),
                 Some(Generator::Jaw(mode)) => self.jaw_pattern(mode),
                 Some(Generator::Pressure) => self.cheek_puff_traction(muscle),
+                Some(Generator::Sphincter(_)) => self.sphincter_traction(muscle),
                 Some(Generator::Force(_)) => self.force_band_traction(muscle),
                 Some(Generator::Lid(action)) => self
                     .eye_lids(muscle.kind.map_or(Side::Left, MuscleKind::side))
@@ -128,6 +137,14 @@ impl FaceRig {
         for &e in &jaw.elements {
             let c = self.shell.centroid(e as usize);
             out.insert(e, -jaw.activation(mode, c, mm));
+        }
+        // The lower teeth move with the jaw: the deep layer sliding on them follows it along
+        // their normal (the solve keeps only that part on a sliding element).
+        for e in self.sliding_elements() {
+            if self.on_lower_teeth(e) {
+                let c = self.shell.centroid(e as usize);
+                out.insert(e, -jaw.activation(mode, c, mm));
+            }
         }
         out.into_iter().collect()
     }

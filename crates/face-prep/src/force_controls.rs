@@ -25,12 +25,27 @@
 //! ```
 
 use crate::anatomy::{Attachment, Landmarks, attachment};
-use crate::muscle_kind::Generator;
-use crate::muscle_model::{AnatomicalParams, band_weight, place_band};
+use crate::muscle_kind::{Generator, Lip};
+use crate::muscle_model::{
+    AnatomicalParams, CONTOUR_TAPER_MM, band_weight, contour_weight, distance_to_loop, place_band,
+};
 use crate::rig::FaceRig;
 use crate::shell::{ElementTag, Shell};
 use glam::{DVec2, DVec3};
 use std::collections::HashSet;
+
+/// Half-width of the orbicularis oris ring, mm from the lip margin (the muscle reaches the
+/// nose base above and the mentolabial sulcus below; Gray's Anatomy, ch. 29).
+pub const SPHINCTER_RING_MM: f64 = 16.0;
+
+/// Full contraction of one half of the sphincter moves the face by at most this fraction of
+/// half the mouth width (both halves together narrow the mouth by 21–55 % on the bundled faces:
+/// a pucker).
+pub const SPHINCTER_STRAIN: f64 = 0.45;
+
+/// Forward share of the sphincter's pull (the lips protrude as they purse), relative to the
+/// pull toward the mouth's centre.
+pub const SPHINCTER_FORWARD: f64 = 0.6;
 
 /// Places a force-driven band: every front and back element (not rim, not skull) whose
 /// centroid lies within the band's whole half-width between origin and insertion.
@@ -46,6 +61,40 @@ pub fn place_force_band(
         ..*params
     };
     place_band(shell, skull, att, mm_per_unit, &whole)
+}
+
+/// Places one half of the sphincter: the front and back elements (not rim, not skull) within
+/// [`SPHINCTER_RING_MM`] of the mouth loop (`mouth`, canonical x-y) in the front plane, above
+/// (`Lip::Upper`) or below the mouth's centre line `centre_y`.
+pub fn place_sphincter(
+    shell: &Shell,
+    skull: &HashSet<u32>,
+    mouth: &[DVec2],
+    centre_y: f64,
+    lip: Lip,
+    mm_per_unit: f64,
+) -> (Vec<u32>, Vec<u32>) {
+    let ring = SPHINCTER_RING_MM / mm_per_unit;
+    let (mut front, mut back) = (Vec::new(), Vec::new());
+    if mouth.len() < 3 {
+        return (front, back);
+    }
+    for e in 0..shell.element_count() {
+        let tag = shell.tags[e];
+        if tag == ElementTag::Rim || skull.contains(&(e as u32)) {
+            continue;
+        }
+        let c = shell.centroid(e).truncate();
+        let upper = c.y >= centre_y;
+        if upper != (lip == Lip::Upper) || distance_to_loop(c, mouth) > ring {
+            continue;
+        }
+        match tag {
+            ElementTag::Front => front.push(e as u32),
+            _ => back.push(e as u32),
+        }
+    }
+    (front, back)
 }
 
 /// Half-axes of each cheek's pressure region, as fractions of the interocular distance
@@ -128,6 +177,9 @@ impl FaceRig {
                 let att = attachment(kind, &self.boxes)?;
                 Some(att.max_strain * strength * att.origin.distance(att.insertion))
             }
+            Generator::Sphincter(_) => {
+                Some(SPHINCTER_STRAIN * strength * 0.5 * self.boxes.mouth.width())
+            }
             Generator::Pressure => Some(CHEEK_PUFF_MM * strength / self.mm_per_unit()),
             Generator::Band(_) | Generator::Jaw(_) | Generator::Lid(_) => None,
         }
@@ -180,6 +232,38 @@ impl FaceRig {
                 let outward = (b - a).cross(c - a).normalize_or_zero();
                 let w = cheek_weight(self.shell.centroid(e as usize).truncate(), &l);
                 (e, outward * w)
+            })
+            .collect()
+    }
+
+    /// The mouth loop in the front plane (canonical x-y), in loop order.
+    pub fn mouth_xy(&self) -> Vec<DVec2> {
+        self.loops
+            .mouth
+            .iter()
+            .map(|&v| self.shell.vertices[v as usize].truncate())
+            .collect()
+    }
+
+    /// Traction pattern of the sphincter half `muscle` at slider = +1 (away from the mouth's
+    /// centre and backward; −1, the contraction, pulls toward the centre and forward), falling
+    /// off from the lip margin across the ring and faded in from the outer contour. Arbitrary
+    /// magnitude: the response is scaled to [`FaceRig::force_target`].
+    pub(crate) fn sphincter_traction(&self, muscle: &crate::muscles::Muscle) -> Vec<(u32, DVec3)> {
+        let mpu = self.mm_per_unit();
+        let mouth = self.mouth_xy();
+        let centre = self.boxes.mouth.center();
+        let contour = self.contour_xy();
+        let ring = SPHINCTER_RING_MM / mpu;
+        muscle
+            .elements()
+            .map(|e| {
+                let c = self.shell.centroid(e as usize).truncate();
+                let outward = (c - centre).normalize_or_zero();
+                let w = band_weight(distance_to_loop(c, &mouth), ring)
+                    * contour_weight(distance_to_loop(c, &contour), CONTOUR_TAPER_MM / mpu);
+                let t = DVec3::new(outward.x, outward.y, -SPHINCTER_FORWARD);
+                (e, t * w)
             })
             .collect()
     }

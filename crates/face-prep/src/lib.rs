@@ -35,6 +35,7 @@ pub mod muscles;
 pub mod orient;
 mod rig;
 pub mod shell;
+pub mod teeth;
 pub mod topology;
 pub mod units;
 

@@ -102,6 +102,18 @@ pub enum Generator {
     /// no other response. The response is scaled after the solve so that its largest
     /// displacement on the face is the attachment's `max_strain` × its length.
     Force(fn(&Landmarks) -> Attachment),
+    /// One half of the orbicularis oris sphincter, force-driven like [`Generator::Force`]: a
+    /// ring of tissue around the mouth pulled toward the mouth's centre and forward (pucker).
+    Sphincter(Lip),
+}
+
+/// Which half of the mouth's sphincter a [`Generator::Sphincter`] control is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Lip {
+    /// Above the mouth's centre line.
+    Upper,
+    /// Below it.
+    Lower,
 }
 
 /// One row of the control table.
@@ -167,7 +179,7 @@ macro_rules! controls {
     };
 }
 
-use Generator::{Band, Force, Jaw, Lid, Pressure};
+use Generator::{Band, Force, Jaw, Lid, Pressure, Sphincter};
 
 controls! {
     /// Frontalis, face's left.
@@ -184,10 +196,10 @@ controls! {
         Right, LevatorLabiiSuperiorisL, Thesis, Band(anatomy::levator_labii_superioris)),
     /// Zygomaticus major, face's left.
     ZygomaticusMajorL = ("zygomaticus_major_l", "Zygomaticus major L", Left,
-        ZygomaticusMajorR, Thesis, Band(anatomy::zygomaticus_major)),
+        ZygomaticusMajorR, Thesis, Force(anatomy::zygomaticus_major)),
     /// Zygomaticus major, face's right.
     ZygomaticusMajorR = ("zygomaticus_major_r", "Zygomaticus major R", Right,
-        ZygomaticusMajorL, Thesis, Band(anatomy::zygomaticus_major)),
+        ZygomaticusMajorL, Thesis, Force(anatomy::zygomaticus_major)),
     /// Mentalis, face's left.
     MentalisL = ("mentalis_l", "Mentalis L", Left, MentalisR, Thesis,
         Band(anatomy::mentalis)),
@@ -245,6 +257,50 @@ controls! {
     /// Procerus (unpaired; skin between the brows down).
     Procerus = ("procerus", "Procerus", Center, Procerus, Anatomical,
         Force(anatomy::procerus)),
+    /// Orbicularis oris, upper lip (sphincter; pucker, funnel, press, roll).
+    OrbicularisOrisUpper = ("orbicularis_oris_upper", "Orbicularis oris upper", Center,
+        OrbicularisOrisUpper, Anatomical, Sphincter(Lip::Upper)),
+    /// Orbicularis oris, lower lip.
+    OrbicularisOrisLower = ("orbicularis_oris_lower", "Orbicularis oris lower", Center,
+        OrbicularisOrisLower, Anatomical, Sphincter(Lip::Lower)),
+    /// Depressor anguli oris, face's left (frown).
+    DepressorAnguliOrisL = ("depressor_anguli_oris_l", "Depressor anguli oris L", Left,
+        DepressorAnguliOrisR, Anatomical, Force(anatomy::depressor_anguli_oris)),
+    /// Depressor anguli oris, face's right.
+    DepressorAnguliOrisR = ("depressor_anguli_oris_r", "Depressor anguli oris R", Right,
+        DepressorAnguliOrisL, Anatomical, Force(anatomy::depressor_anguli_oris)),
+    /// Risorius, face's left (mouth corner straight out).
+    RisoriusL = ("risorius_l", "Risorius L", Left, RisoriusR, Anatomical,
+        Force(anatomy::risorius)),
+    /// Risorius, face's right.
+    RisoriusR = ("risorius_r", "Risorius R", Right, RisoriusL, Anatomical,
+        Force(anatomy::risorius)),
+    /// Levator labii superioris alaeque nasi, face's left (nose wrinkle, upper lip up).
+    LevatorLabiiSuperiorisAlaequeNasiL = ("levator_labii_superioris_alaeque_nasi_l",
+        "Levator labii superioris alaeque nasi L", Left, LevatorLabiiSuperiorisAlaequeNasiR,
+        Anatomical, Force(anatomy::levator_labii_superioris_alaeque_nasi)),
+    /// Levator labii superioris alaeque nasi, face's right.
+    LevatorLabiiSuperiorisAlaequeNasiR = ("levator_labii_superioris_alaeque_nasi_r",
+        "Levator labii superioris alaeque nasi R", Right, LevatorLabiiSuperiorisAlaequeNasiL,
+        Anatomical, Force(anatomy::levator_labii_superioris_alaeque_nasi)),
+    /// Zygomaticus minor, face's left (upper lip up and out).
+    ZygomaticusMinorL = ("zygomaticus_minor_l", "Zygomaticus minor L", Left,
+        ZygomaticusMinorR, Anatomical, Force(anatomy::zygomaticus_minor)),
+    /// Zygomaticus minor, face's right.
+    ZygomaticusMinorR = ("zygomaticus_minor_r", "Zygomaticus minor R", Right,
+        ZygomaticusMinorL, Anatomical, Force(anatomy::zygomaticus_minor)),
+    /// Levator anguli oris, face's left (mouth corner up).
+    LevatorAnguliOrisL = ("levator_anguli_oris_l", "Levator anguli oris L", Left,
+        LevatorAnguliOrisR, Anatomical, Force(anatomy::levator_anguli_oris)),
+    /// Levator anguli oris, face's right.
+    LevatorAnguliOrisR = ("levator_anguli_oris_r", "Levator anguli oris R", Right,
+        LevatorAnguliOrisL, Anatomical, Force(anatomy::levator_anguli_oris)),
+    /// Buccinator, face's left (corner back, cheek pressed: dimple).
+    BuccinatorL = ("buccinator_l", "Buccinator L", Left, BuccinatorR, Anatomical,
+        Force(anatomy::buccinator)),
+    /// Buccinator, face's right.
+    BuccinatorR = ("buccinator_r", "Buccinator R", Right, BuccinatorL, Anatomical,
+        Force(anatomy::buccinator)),
 }
 
 impl MuscleKind {
@@ -315,7 +371,10 @@ impl MuscleKind {
     pub fn band(self) -> Option<fn(&Landmarks) -> Attachment> {
         match self.generator() {
             Generator::Band(f) | Generator::Force(f) => Some(f),
-            Generator::Jaw(_) | Generator::Pressure | Generator::Lid(_) => None,
+            Generator::Jaw(_)
+            | Generator::Pressure
+            | Generator::Lid(_)
+            | Generator::Sphincter(_) => None,
         }
     }
 
@@ -323,7 +382,10 @@ impl MuscleKind {
     /// its elements carry a traction in its own response and are free in every other one
     /// ([`crate::force_controls`]).
     pub fn is_force(self) -> bool {
-        matches!(self.generator(), Generator::Force(_) | Generator::Pressure)
+        matches!(
+            self.generator(),
+            Generator::Force(_) | Generator::Sphincter(_) | Generator::Pressure
+        )
     }
 }
 

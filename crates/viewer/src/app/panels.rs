@@ -62,12 +62,20 @@ impl ViewerApp {
         }
         let mut changed = false;
         let mut preset_clicked = None;
-        for (id, value) in ids.iter().zip(self.sliders.iter_mut()) {
-            let name = face_prep::MuscleKind::from_id(id).map_or(id.as_str(), |m| m.display_name());
-            changed |= ui
-                .add(egui::Slider::new(value, -1.0..=1.0).text(name))
-                .changed();
-        }
+        // The anatomical rig has 37 controls: their sliders scroll in a box about a dozen high,
+        // so the presets and the panels below stay in reach.
+        egui::ScrollArea::vertical()
+            .id_salt("muscle_sliders")
+            .max_height(MUSCLE_SLIDERS_HEIGHT)
+            .show(ui, |ui| {
+                for (id, value) in ids.iter().zip(self.sliders.iter_mut()) {
+                    let name = face_prep::MuscleKind::from_id(id)
+                        .map_or(id.as_str(), |m| m.display_name());
+                    changed |= ui
+                        .add(egui::Slider::new(value, -1.0..=1.0).text(name))
+                        .changed();
+                }
+            });
         ui.horizontal_wrapped(|ui| {
             let enabled = !ids.is_empty();
             if ui
@@ -413,6 +421,9 @@ impl ViewerApp {
         }
     }
 }
+
+/// Height, in points, of the scrolling box of muscle sliders (about a dozen sliders).
+const MUSCLE_SLIDERS_HEIGHT: f32 = 280.0;
 
 /// `3.2 s`, `42 s`, `2 min 05 s`.
 fn seconds_text(seconds: f32) -> String {
