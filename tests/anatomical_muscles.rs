@@ -267,11 +267,20 @@ fn zygomaticus_ict_13k_right() {
     zygomaticus_moves_its_corner(3, MuscleKind::ZygomaticusMajorR, 0.8);
 }
 
-/// Lee Perry-Smith, left: 9.4 mm at 47°, 74 % of the largest motion (12.6 mm, on the lower lip
-/// 5 mm medial of the corner: the force-driven zygomaticus drags the lip sliding on the teeth).
+/// Known gap: Lee Perry-Smith, left: the corner moves 9.4 mm at 47°, but only 74 % of the largest
+/// motion (12.6 mm, on the lower lip 5 mm medial of the corner: the force-driven zygomaticus drags
+/// the lip along the teeth). The right side passes.
 #[test]
+#[ignore = "known gap: Lee Perry-Smith's left corner 74 % of the largest motion (see the issue note)"]
 fn zygomaticus_lee_perry_smith_left() {
-    zygomaticus_moves_its_corner(2, MuscleKind::ZygomaticusMajorL, 0.7);
+    zygomaticus_moves_its_corner(2, MuscleKind::ZygomaticusMajorL, 0.8);
+}
+
+/// Lee Perry-Smith, left, without the share: 7–15 mm, 25°–70°, outward (the share is the known gap
+/// above).
+#[test]
+fn zygomaticus_lee_perry_smith_left_moves_its_corner_up_and_out() {
+    zygomaticus_moves_its_corner(2, MuscleKind::ZygomaticusMajorL, 0.0);
 }
 
 #[test]
