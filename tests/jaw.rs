@@ -1,6 +1,6 @@
 //! The jaw (issue 11, item 1) on every bundled face at its detected unit: `jaw_open` at full
 //! activation drops the lower lip 25–45 mm (ICT's captured jawOpen: 41 mm in all, 35 mm down)
-//! with the chin nearly as far (at least 90 %), the eyes and forehead stay within 0.5 mm, the contour above
+//! with the chin as far (at least 99 %), the eyes and forehead stay within 0.5 mm, the contour above
 //! the jaw stays within 0.5 mm, and triangles flip only at the lips (at most 0.5 % of the
 //! front triangles). On the ICT 13k face the response is compared with the captured jawOpen
 //! (`tests/data/calibration`, MIT).
@@ -167,13 +167,12 @@ fn jaw_open_drops_the_lower_face(face: usize, flip_limit: f64) {
         "lower lip {:.1} mm down",
         -lip.y
     );
-    // The issue asks for the chin at least as far as the lip; held to 90 %: the lower lip lies
-    // farther in front of the hinge than the chin, so the rigid jaw carries it a little
-    // farther (chin / lip measured 0.94 on ICT 13k, 0.96 ICT 2500, 0.98 Lee Perry-Smith, 0.98
-    // MediaPipe; ICT's captured jawOpen: 1.03).
+    // The issue asks for the chin at least as far as the lip (ICT's captured jawOpen: 1.03).
+    // Measured chin / lip: 1.00 ICT 13k, 1.04 ICT 2500, 1.09 Lee Perry-Smith, 1.09 MediaPipe;
+    // held to 0.99 (ICT 13k: 43.6 / 43.6 mm).
     assert!(
-        chin.length() >= 0.9 * lip.length(),
-        "chin {:.1} < 0.9 × lip {:.1}",
+        chin.length() >= 0.99 * lip.length(),
+        "chin {:.1} < 0.99 × lip {:.1}",
         chin.length(),
         lip.length()
     );
@@ -281,18 +280,22 @@ face_tests!(mediapipe, 0, super::FLIP_LIMIT);
 face_tests!(lee_perry_smith, 2, super::FLIP_LIMIT);
 // The ICT faces' lips roll inward and press together; their rolled-in flaps are not simulated
 // but hang from the lip margins (`facebem::rolled_in`), and where the upper and lower margins
-// part, 1.5 % of the triangles flip (all within 5 mm of the mouth loop; ICT's own captured
-// jawOpen flips 0.24 %). Held here to 2 %; the issue's 0.5 % is the known gap below.
-face_tests!(ict_2500, 1, 0.02);
-face_tests!(ict_13k, 3, 0.02);
+// part, triangles flip (ICT 13k 0.31 %, ICT 2500 0.76 %, all near the mouth loop; ICT's own
+// captured jawOpen flips 0.24 %). Held here to 1 %; the issue's 0.5 % is the known gap below.
+face_tests!(ict_2500, 1, 0.01);
+face_tests!(ict_13k, 3, 0.01);
 
-/// Known gap: the issue's 0.5 % flip limit on the ICT faces (measured 37 of 2500 and 198 of
-/// 13 120, all at the lips).
+/// The issue's 0.5 % flip limit: ICT 13k meets it (41 of 13 120).
 #[test]
-#[ignore = "known gap: 1.5 % of the ICT faces' triangles flip at the rolled-in lips (see the note)"]
-fn ict_jaw_open_flips_at_most_half_a_percent() {
-    jaw_open_drops_the_lower_face(1, FLIP_LIMIT);
+fn ict_13k_jaw_open_flips_at_most_half_a_percent() {
     jaw_open_drops_the_lower_face(3, FLIP_LIMIT);
+}
+
+/// Known gap: ICT 2500 does not (19 of 2500, 0.76 %, all at the lips).
+#[test]
+#[ignore = "known gap: 0.76 % of ICT 2500's triangles flip at the rolled-in lips (see the note)"]
+fn ict_2500_jaw_open_flips_at_most_half_a_percent() {
+    jaw_open_drops_the_lower_face(1, FLIP_LIMIT);
 }
 
 /// Against ICT-FaceKit's captured jawOpen on the same mesh: cosine similarity of the whole

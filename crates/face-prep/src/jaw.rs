@@ -32,19 +32,17 @@
 //!
 //! Slider convention as for every control: −1 is full activation.
 //!
-//! - `jaw_open`: rotation about the TMJ axis by [`OPEN_RAD`], linearised, with the condyle's
-//!   forward glide [`CONDYLE_GLIDE_MM`] (a real opening rotates the condyle in its fossa and
-//!   slides it forward onto the articular eminence: Okeson, *Management of Temporomandibular
-//!   Disorders and Occlusion*, ch. 1): `d = θ (x̂ × (p − pivot)) + g ẑ`. The sum is a rotation
-//!   about a parallel axis `g / θ` below the TMJ, the hinge ([`Jaw::hinge`]; about 38 mm below
-//!   the joint, near the mandibular foramen, where the instantaneous centre of a human opening
-//!   is found: Grant, J Biomech 1973). The chin moves down and back, the angle of the jaw
-//!   hardly moves. The glide is a translation, exact; a linearised rotation is exact
-//!   to first order only: a point at radius r moves θ r along the tangent instead of along the
-//!   arc, so it overshoots the true position by r(θ − sin θ) along the tangent and misses the
-//!   inward (toward the pivot) component r(1 − cos θ). At θ = 0.42 rad (24.1°) and r = 110 mm
-//!   (TMJ to the lower lip on an adult) that is 1.4 mm and 9.6 mm, and the jaw is stretched
-//!   by √(1 + θ²) − 1 = 8.5 %.
+//! - `jaw_open`: rotation about the TMJ axis by [`OPEN_RAD`] with the condyle's forward glide
+//!   [`CONDYLE_GLIDE_MM`] (a real opening rotates the condyle in its fossa and slides it forward
+//!   onto the articular eminence: Okeson, *Management of Temporomandibular Disorders and
+//!   Occlusion*, ch. 1): `d = (R(θ) − I)(p − pivot) + g ẑ`, the chord of the arc, so the full
+//!   opening is the exact rigid motion (a tangent `θ x̂ × (p − pivot)` misses the inward
+//!   r (1 − cos θ), 13 mm at the lower lip, and put the chin and lip too far forward against
+//!   ICT's capture). The sum is a rotation by θ about a parallel axis, the hinge
+//!   ([`Jaw::hinge`], [`hinge_offset`]; about 14 mm below the joint and 3 mm in front of it).
+//!   The chin moves down and back. The BEM is linear in the slider, so a partial opening moves
+//!   along the chord: at half opening a point at r = 110 mm from the joint is 3.4 mm off the
+//!   true half rotation (0 at none and at full).
 //! - `jaw_forward`: protrusion, a translation of [`FORWARD_MM`] toward +z (the face's front).
 //! - `jaw_lateral`: a translation of [`LATERAL_MM`] along x (−1: toward the face's left, +x).
 //!
@@ -64,12 +62,14 @@ use crate::orient::{FaceLoops, loop_centroid};
 use crate::shell::{ElementTag, Shell};
 use glam::{DVec2, DVec3};
 
-/// Opening angle of `jaw_open` at full activation, radians (24.1°): the lower lip moves about
-/// 33 mm down on an adult (ICT's captured jawOpen: 41 mm in total, 35 mm down).
-pub const OPEN_RAD: f64 = 0.42;
-/// Forward glide of the condyle at full `jaw_open`, mm (the condyle translates 15–20 mm at a
-/// maximal opening).
-pub const CONDYLE_GLIDE_MM: f64 = 16.0;
+/// Opening angle of `jaw_open` at full activation, radians (28.6°): the lower lip moves 36–44 mm
+/// in all on the bundled faces, 26–30 mm of it down (ICT's captured jawOpen: 41 mm in all, 35 mm
+/// down).
+pub const OPEN_RAD: f64 = 0.5;
+/// Forward glide of the condyle at full `jaw_open`, mm. The condyle translates 15–20 mm at a
+/// maximal opening; 6 mm matches ICT's captured jawOpen best (cosine 0.904 on the 13k face,
+/// 0.874 at 16 mm) and makes the chin move as far as the lower lip.
+pub const CONDYLE_GLIDE_MM: f64 = 6.0;
 /// Protrusion of `jaw_forward` at full activation, mm (adult maximum protrusion is 8–10 mm).
 pub const FORWARD_MM: f64 = 8.0;
 /// Lateral shift of `jaw_lateral` at full activation, mm (adult maximum lateral excursion is
@@ -110,6 +110,19 @@ pub struct Jaw {
     pub elements: Vec<u32>,
 }
 
+/// Offset from the TMJ pivot to the opening's hinge (canonical, mesh units) for a condylar glide
+/// `glide`: the fixed point of the rotation by [`OPEN_RAD`] about the pivot followed by the glide
+/// along +z, `(−g sin θ / (2 (1 − cos θ)), g / 2)` in (y, z) (≈ g / θ below the pivot).
+///
+/// ```
+/// let o = face_prep::jaw::hinge_offset(16.0);
+/// assert!((o.y + 37.5).abs() < 0.1 && (o.z - 8.0).abs() < 1e-12 && o.x == 0.0);
+/// ```
+pub fn hinge_offset(glide: f64) -> DVec3 {
+    let (sin, cos) = OPEN_RAD.sin_cos();
+    DVec3::new(0.0, -glide * sin / (2.0 * (1.0 - cos)), 0.5 * glide)
+}
+
 impl Jaw {
     /// The jaw of a shell with its loops and feature boxes (canonical frame), its unit
     /// `mm_per_unit` millimetres.
@@ -124,7 +137,7 @@ impl Jaw {
             eye_y - TMJ_BELOW_EYES_H * l.h,
             eye_depth - TMJ_BEHIND_EYES_IOD * l.iod,
         );
-        let hinge = pivot - DVec3::Y * (CONDYLE_GLIDE_MM / mm_per_unit / OPEN_RAD);
+        let hinge = pivot + hinge_offset(CONDYLE_GLIDE_MM / mm_per_unit);
         let elements = (0..shell.element_count())
             .filter(|&e| shell.tags[e] == ElementTag::Rim && shell.centroid(e).y < hinge.y)
             .map(|e| e as u32)
@@ -142,21 +155,30 @@ impl Jaw {
     /// units (`mm_per_unit` converts the millimetre amplitudes).
     ///
     /// ```
-    /// use face_prep::jaw::{CONDYLE_GLIDE_MM, Jaw, JawMode, OPEN_RAD};
+    /// use face_prep::jaw::{CONDYLE_GLIDE_MM, Jaw, JawMode, OPEN_RAD, hinge_offset};
     /// use glam::DVec3;
-    /// let hinge = DVec3::new(0.0, -CONDYLE_GLIDE_MM / OPEN_RAD, 0.0); // mm
+    /// let hinge = hinge_offset(CONDYLE_GLIDE_MM); // mm, pivot at the origin
     /// let jaw = Jaw { pivot: DVec3::ZERO, hinge, mouth_line_y: -50.0, lip_line_y: -55.0, elements: vec![] };
-    /// // The hinge stays; a chin 60 below and 90 in front of it moves down and back.
-    /// assert!(jaw.activation(JawMode::Open, hinge, 1.0).length() < 1e-12);
+    /// // The hinge stays; a chin 60 below and 90 in front of it turns rigidly by OPEN_RAD about
+    /// // the hinge: down and back, its distance from the hinge kept.
+    /// assert!(jaw.activation(JawMode::Open, hinge, 1.0).length() < 1e-9);
     /// let chin = hinge + DVec3::new(0.0, -60.0, 90.0);
-    /// let d = jaw.activation(JawMode::Open, chin, 1.0);
-    /// assert!((d - DVec3::new(0.0, -90.0, -60.0) * OPEN_RAD).length() < 1e-9);
+    /// let moved = chin + jaw.activation(JawMode::Open, chin, 1.0);
+    /// assert!((moved.distance(hinge) - chin.distance(hinge)).abs() < 1e-9);
+    /// assert!(moved.y < chin.y && moved.z < chin.z);
     /// ```
     pub fn activation(&self, mode: JawMode, p: DVec3, mm_per_unit: f64) -> DVec3 {
         match mode {
             JawMode::Open => {
-                OPEN_RAD * DVec3::X.cross(p - self.pivot)
-                    + DVec3::Z * (CONDYLE_GLIDE_MM / mm_per_unit)
+                // The chord of the arc: exact at full opening (a tangent θ x̂ × r would miss
+                // the inward r (1 − cos θ), 9.6 mm at the lower lip).
+                let r = p - self.pivot;
+                let (sin, cos) = OPEN_RAD.sin_cos();
+                DVec3::new(
+                    0.0,
+                    r.y * (cos - 1.0) - r.z * sin,
+                    r.y * sin + r.z * (cos - 1.0),
+                ) + DVec3::Z * (CONDYLE_GLIDE_MM / mm_per_unit)
             }
             JawMode::Forward => DVec3::Z * (FORWARD_MM / mm_per_unit),
             JawMode::Lateral => DVec3::X * (LATERAL_MM / mm_per_unit),
