@@ -109,7 +109,7 @@ impl FaceRig {
     /// assert!(jaw.elements.iter().all(|&e| rig.shell.tags[e as usize] == ElementTag::Rim));
     /// // Behind the face, between the eyes and the mouth; the hinge below the joint.
     /// assert!(jaw.pivot.y < rig.boxes.eye_l.min.y && jaw.pivot.y > rig.boxes.mouth.max.y);
-    /// assert!(jaw.hinge.y < jaw.pivot.y && jaw.hinge.z == jaw.pivot.z);
+    /// assert!(jaw.hinge.y < jaw.pivot.y && jaw.hinge.z > jaw.pivot.z);
     /// ```
     pub fn jaw(&self) -> Jaw {
         Jaw::of(&self.shell, &self.loops, &self.boxes, self.mm_per_unit())

@@ -115,8 +115,11 @@ pub struct Jaw {
 /// along +z, `(−g sin θ / (2 (1 − cos θ)), g / 2)` in (y, z) (≈ g / θ below the pivot).
 ///
 /// ```
-/// let o = face_prep::jaw::hinge_offset(16.0);
-/// assert!((o.y + 37.5).abs() < 0.1 && (o.z - 8.0).abs() < 1e-12 && o.x == 0.0);
+/// use face_prep::jaw::{OPEN_RAD, hinge_offset};
+/// let o = hinge_offset(16.0);
+/// // About g / θ below the pivot (the small-angle hinge), half the glide in front of it.
+/// assert!((o.y + 16.0 / OPEN_RAD).abs() < 0.05 * 16.0 / OPEN_RAD);
+/// assert!((o.z - 8.0).abs() < 1e-12 && o.x == 0.0);
 /// ```
 pub fn hinge_offset(glide: f64) -> DVec3 {
     let (sin, cos) = OPEN_RAD.sin_cos();
