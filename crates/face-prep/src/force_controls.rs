@@ -65,7 +65,8 @@ pub fn place_force_band(
 
 /// Places one half of the sphincter: the front and back elements (not rim, not skull) within
 /// [`SPHINCTER_RING_MM`] of the mouth loop (`mouth`, canonical x-y) in the front plane, above
-/// (`Lip::Upper`) or below the mouth's centre line `centre_y`.
+/// (`Lip::Upper`) or below the mouth's centre line `centre_y`, each chain ordered by its angle
+/// around the mouth.
 pub fn place_sphincter(
     shell: &Shell,
     skull: &HashSet<u32>,
@@ -93,6 +94,15 @@ pub fn place_sphincter(
             ElementTag::Front => front.push(e as u32),
             _ => back.push(e as u32),
         }
+    }
+    // Around the mouth by angle (the chains are drawn in order: a ring, not a scribble).
+    let cx = mouth.iter().map(|p| p.x).sum::<f64>() / mouth.len() as f64;
+    let angle = |e: u32| {
+        let c = shell.centroid(e as usize);
+        (c.y - centre_y).atan2(c.x - cx)
+    };
+    for chain in [&mut front, &mut back] {
+        chain.sort_by(|&a, &b| angle(a).total_cmp(&angle(b)).then(a.cmp(&b)));
     }
     (front, back)
 }
