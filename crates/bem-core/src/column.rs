@@ -74,11 +74,7 @@ pub(crate) fn assemble_column(
                 }
                 if let Some(rhs) = rhs.as_deref_mut() {
                     for &(r, u) in values {
-                        let y = &mut rhs[r as usize * dof + row..r as usize * dof + row + 3];
-                        let hu = block_times(&h, u);
-                        for a in 0..3 {
-                            y[a] -= hu[a];
-                        }
+                        add_to_rhs(rhs, dof, row, r, block_times(&h, u).map(|x| -x));
                     }
                 }
             }
@@ -91,11 +87,7 @@ pub(crate) fn assemble_column(
                 if let Some(rhs) = rhs.as_deref_mut() {
                     let g = consts.u_block(&m);
                     for &(r, t) in values {
-                        let y = &mut rhs[r as usize * dof + row..r as usize * dof + row + 3];
-                        let gt = block_times(&g, t);
-                        for a in 0..3 {
-                            y[a] += gt[a];
-                        }
+                        add_to_rhs(rhs, dof, row, r, block_times(&g, t));
                     }
                 }
             }
@@ -116,10 +108,7 @@ pub(crate) fn assemble_column(
                     for &(r, v) in values {
                         let (un, tt) = split(v);
                         let (hu, gt) = (block_times(&h, un), block_times(&g, tt));
-                        let y = &mut rhs[r as usize * dof + row..r as usize * dof + row + 3];
-                        for a in 0..3 {
-                            y[a] += gt[a] - hu[a];
-                        }
+                        add_to_rhs(rhs, dof, row, r, std::array::from_fn(|a| gt[a] - hu[a]));
                     }
                 }
             }
@@ -142,11 +131,7 @@ pub(crate) fn assemble_column(
             ElementKind::Traction => {
                 if let Some(rhs) = rhs {
                     for &(r, t) in values {
-                        let y = &mut rhs[r as usize * dof + row..r as usize * dof + row + 3];
-                        let gt = block_times(&g, t);
-                        for a in 0..3 {
-                            y[a] += gt[a];
-                        }
+                        add_to_rhs(rhs, dof, row, r, block_times(&g, t));
                     }
                 }
             }
@@ -157,11 +142,7 @@ pub(crate) fn assemble_column(
                 }
                 if let Some(rhs) = rhs {
                     for &(r, v) in values {
-                        let gt = block_times(&g, split(v).1);
-                        let y = &mut rhs[r as usize * dof + row..r as usize * dof + row + 3];
-                        for a in 0..3 {
-                            y[a] += gt[a];
-                        }
+                        add_to_rhs(rhs, dof, row, r, block_times(&g, split(v).1));
                     }
                 }
             }
@@ -182,4 +163,13 @@ pub(crate) fn assemble_column(
 /// `b · v` for a 3 × 3 block.
 pub(crate) fn block_times(b: &Block, v: DVec3) -> [f64; 3] {
     std::array::from_fn(|a| b[a][0] * v.x + b[a][1] * v.y + b[a][2] * v.z)
+}
+
+/// Adds `v` to the three rows of element row `row` in right-hand side `r` (the partial right-hand
+/// sides are stored one after another, `dof` values each).
+fn add_to_rhs(rhs: &mut [f64], dof: usize, row: usize, r: u32, v: [f64; 3]) {
+    let start = r as usize * dof + row;
+    for (y, d) in rhs[start..start + 3].iter_mut().zip(v) {
+        *y += d;
+    }
 }

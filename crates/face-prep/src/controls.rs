@@ -16,28 +16,25 @@ impl FaceRig {
     /// shell. `skull` holds the rig's skull elements (never part of a band).
     pub(crate) fn place_control(&self, kind: MuscleKind, skull: &HashSet<u32>) -> Muscle {
         let (front_chain, back_chain) = match kind.generator() {
-            Generator::Band(_) => match attachment(kind, &self.boxes) {
-                Some(att) => place_band(
-                    &self.shell,
-                    skull,
-                    &att,
-                    self.mm_per_unit(),
-                    &self.params.anatomical,
-                ),
+            Generator::Band(_) | Generator::Force(_) => match attachment(kind, &self.boxes) {
+                Some(att) => {
+                    let place = if kind.is_force() {
+                        crate::force_controls::place_force_band
+                    } else {
+                        place_band
+                    };
+                    place(
+                        &self.shell,
+                        skull,
+                        &att,
+                        self.mm_per_unit(),
+                        &self.params.anatomical,
+                    )
+                }
                 None => (Vec::new(), Vec::new()),
             },
             // The jaw's elements are skull (rim) elements: [`FaceRig::jaw`].
             Generator::Jaw(_) => (Vec::new(), Vec::new()),
-            Generator::Force(_) => match attachment(kind, &self.boxes) {
-                Some(att) => crate::force_controls::place_force_band(
-                    &self.shell,
-                    skull,
-                    &att,
-                    self.mm_per_unit(),
-                    &self.params.anatomical,
-                ),
-                None => (Vec::new(), Vec::new()),
-            },
             Generator::Sphincter(lip) => crate::force_controls::place_sphincter(
                 &self.shell,
                 skull,
@@ -74,15 +71,7 @@ impl FaceRig {
         match self.params.muscle_model {
             MuscleModel::Thesis => muscle_pattern(&self.shell, muscle),
             MuscleModel::Anatomical => match muscle.kind.map(MuscleKind::generator) {
-                None | Some(Generator::Band(_)) => anatomical_pattern(
-                    &self.shell,
-                    &self.shell_bvh(),
-                    &self.boxes,
-                    &self.contour_xy(),
-                    muscle,
-                    self.mm_per_unit(),
-                    &self.params.anatomical,
-                ),
+                None | Some(Generator::Band(_)) => self.band_pattern(muscle),
                 Some(Generator::Jaw(mode)) => self.jaw_pattern(mode),
                 Some(Generator::Pressure) => self.cheek_puff_traction(muscle),
                 Some(Generator::Sphincter(_)) => self.sphincter_traction(muscle),
@@ -95,6 +84,20 @@ impl FaceRig {
                     .unwrap_or_default(),
             },
         }
+    }
+
+    /// [`anatomical_pattern`] of `muscle` on this rig: its band's per-element motion at
+    /// slider = +1 (a prescribed band's displacement; a force-driven band's traction shape).
+    pub(crate) fn band_pattern(&self, muscle: &Muscle) -> Vec<(u32, DVec3)> {
+        anatomical_pattern(
+            &self.shell,
+            &self.shell_bvh(),
+            &self.boxes,
+            &self.contour_xy(),
+            muscle,
+            self.mm_per_unit(),
+            &self.params.anatomical,
+        )
     }
 
     /// The rig's jaw ([`crate::jaw`]): TMJ axis and jaw segment of the rim.

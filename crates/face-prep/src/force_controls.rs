@@ -201,15 +201,7 @@ impl FaceRig {
     /// by the position along the muscle (0 at the origin, 1 at the insertion), so the pull
     /// concentrates where the muscle inserts into the skin. Arbitrary magnitude.
     pub(crate) fn force_band_traction(&self, muscle: &crate::muscles::Muscle) -> Vec<(u32, DVec3)> {
-        let pattern = crate::muscle_model::anatomical_pattern(
-            &self.shell,
-            &self.shell_bvh(),
-            &self.boxes,
-            &self.contour_xy(),
-            muscle,
-            self.mm_per_unit(),
-            &self.params.anatomical,
-        );
+        let pattern = self.band_pattern(muscle);
         let Some(att) = muscle.kind.and_then(|k| attachment(k, &self.boxes)) else {
             return pattern;
         };
