@@ -168,6 +168,17 @@ pub fn simplify(
     triangles: &[[u32; 3]],
     params: &LargeFaceParams,
 ) -> Result<Simplified, SimplifyError> {
+    simplify_with_locks(vertices, triangles, params, &[])
+}
+
+/// [`simplify`] with the vertices flagged in `extra_locks` (one flag per vertex; a shorter
+/// slice leaves the rest unflagged) locked besides the resampled border.
+pub fn simplify_with_locks(
+    vertices: &[DVec3],
+    triangles: &[[u32; 3]],
+    params: &LargeFaceParams,
+    extra_locks: &[bool],
+) -> Result<Simplified, SimplifyError> {
     let target_triangles = params.target_triangles;
     if target_triangles < 16 {
         return Err(SimplifyError::TargetTooSmall(target_triangles));
@@ -198,7 +209,7 @@ pub fn simplify(
     let loops = (params.border_spacing > 0.0)
         .then(|| face_prep::topology::validate(vertices, triangles).ok())
         .flatten();
-    let (locks, options) = match loops {
+    let (mut locks, options) = match loops {
         Some(loops) => {
             let spacing =
                 params.border_spacing * target_edge_length(vertices, triangles, target_triangles);
@@ -212,6 +223,9 @@ pub fn simplify(
             meshopt::SimplifyOptions::LockBorder,
         ),
     };
+    for (lock, &extra) in locks.iter_mut().zip(extra_locks) {
+        *lock |= extra;
+    }
     let result = match meshopt::VertexDataAdapter::new(&bytes, 12, 0) {
         Ok(adapter) => meshopt::simplify_with_attributes_and_locks(
             &indices,

@@ -31,6 +31,7 @@ mod control;
 pub mod describe;
 pub mod export;
 pub mod expression_sets;
+pub mod face_simplify;
 pub mod large_face;
 mod lid_closure;
 pub mod measure;

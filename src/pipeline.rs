@@ -268,7 +268,11 @@ pub fn prepare(mesh: &FaceMesh, params: &PipelineParams) -> Result<PreparedRig, 
     };
     let base = peeled.as_ref().unwrap_or(&whole);
     let reduced = if base.triangles.len() > params.large_face.max_triangles {
-        let s = crate::large_face::simplify(&base.vertices, &base.triangles, &params.large_face)?;
+        let (s, _path) = crate::face_simplify::simplify_face(
+            &base.vertices,
+            &base.triangles,
+            &params.large_face,
+        )?;
         Some(Simplified {
             original_vertex: s
                 .original_vertex

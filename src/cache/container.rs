@@ -25,8 +25,10 @@ pub const MAGIC: [u8; 8] = *b"FACEBEM\x1a";
 /// force-driven `cheek_puff`; 9: the anatomical rig's eyelid controls, `Generator::Lid`, and lid
 /// back elements no longer skull; 10: the force-driven brow muscles, `Generator::Force`; 11: the
 /// teeth (sliding deep layer), a force-driven zygomaticus, the mouth's muscles and
-/// `Generator::Sphincter`; 12: the jaw opening as the chord of its arc, 0.5 rad, 6 mm glide).
-pub const FORMAT_VERSION: u32 = 12;
+/// `Generator::Sphincter`; 12: the jaw opening as the chord of its arc, 0.5 rad, 6 mm glide; 13: large faces simplified in
+/// their canonical frame and, when mirror-symmetric, as a mirrored half,
+/// [`crate::face_simplify`]).
+pub const FORMAT_VERSION: u32 = 13;
 /// Size of the fixed header in bytes.
 pub const HEADER_LEN: usize = 8 + 4 + 32 + 32 + 8 + 32;
 

@@ -239,7 +239,7 @@ pub fn corrugator_supercilii(l: &Landmarks) -> Attachment {
         origin: DVec2::new(l.mouth.x + 0.06 * l.iod, eye.y),
         insertion: DVec2::new(eye.x - 0.15 * l.iod, eye.y + 0.28 * l.iod),
         half_width_mm: 8.0,
-        max_strain: 0.45,
+        max_strain: 0.6,
         spread_mm: 0.0,
     }
 }
@@ -250,9 +250,9 @@ pub fn procerus(l: &Landmarks) -> Attachment {
     let eye = left_eye(l);
     Attachment {
         origin: DVec2::new(l.mouth.x, eye.y - 0.25 * l.iod),
-        insertion: DVec2::new(l.mouth.x, eye.y + 0.35 * l.iod),
+        insertion: DVec2::new(l.mouth.x, eye.y + 0.45 * l.iod),
         half_width_mm: 10.0,
-        max_strain: 0.2,
+        max_strain: 0.12,
         spread_mm: 0.0,
     }
 }

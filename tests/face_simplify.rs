@@ -1,0 +1,170 @@
+//! The simulated copy of a large face does not depend on how the face's file is written
+//! (vertex order, rotation, translation, scale), and is mirror-symmetric when the face is
+//! (issue 10, "Invariance" and "Symmetry"). No BEM solve: these check the copy itself.
+
+mod support;
+
+use face_prep::FaceMesh;
+use facebem::face_simplify::{SimplifyPath, mirror_map, simplify_face};
+use facebem::large_face::LargeFaceParams;
+use facebem::{PipelineParams, prepare};
+use glam::{DAffine3, DQuat, DVec3};
+use std::collections::BTreeSet;
+
+fn load(name: &str) -> FaceMesh {
+    face_prep::load_face(&support::asset(name)).unwrap()
+}
+
+/// The face rotated about an odd axis, scaled ×10, moved, and with its vertices renumbered by a
+/// fixed permutation; returns the new mesh and, per original vertex, its new index.
+fn rewritten(mesh: &FaceMesh) -> (FaceMesh, Vec<u32>) {
+    let n = mesh.vertices.len();
+    let step = (1..n)
+        .map(|s| s * 7 + 3)
+        .find(|&s| gcd(s, n) == 1)
+        .unwrap_or(1);
+    // new index i holds old vertex (i * step) % n
+    let mut new_of_old = vec![0u32; n];
+    for new in 0..n {
+        new_of_old[(new * step) % n] = new as u32;
+    }
+    let moved = DAffine3::from_scale_rotation_translation(
+        DVec3::splat(10.0),
+        DQuat::from_axis_angle(DVec3::new(0.3, -0.8, 0.5).normalize(), 2.1),
+        DVec3::new(40.0, -7.0, 3.0),
+    );
+    let vertices: Vec<DVec3> = (0..n)
+        .map(|new| moved.transform_point3(mesh.vertices[(new * step) % n]))
+        .collect();
+    // Triangles also reordered (reversed) and each rotated by one corner.
+    let triangles: Vec<[u32; 3]> = mesh
+        .triangles
+        .iter()
+        .rev()
+        .map(|t| {
+            let t = t.map(|v| new_of_old[v as usize]);
+            [t[1], t[2], t[0]]
+        })
+        .collect();
+    (
+        FaceMesh::from_triangles(&vertices, &triangles).unwrap(),
+        new_of_old,
+    )
+}
+
+fn gcd(a: usize, b: usize) -> usize {
+    if b == 0 { a } else { gcd(b, a % b) }
+}
+
+/// The simulated copy as a set of triangles over input vertex ids, each triangle rotated to
+/// start at its smallest id (winding kept).
+fn triangle_set(mesh: &FaceMesh, map: impl Fn(u32) -> u32) -> BTreeSet<[u32; 3]> {
+    let prepared = prepare(mesh, &PipelineParams::default()).unwrap();
+    let s = prepared.simplified.expect("a large face is simplified");
+    s.triangles
+        .iter()
+        .map(|t| {
+            let t = t.map(|v| map(s.original_vertex[v as usize]));
+            let k = (0..3).min_by_key(|&k| t[k]).unwrap();
+            [t[k], t[(k + 1) % 3], t[(k + 2) % 3]]
+        })
+        .collect()
+}
+
+fn copy_is_invariant(name: &str) {
+    let mesh = load(name);
+    let (other, new_of_old) = rewritten(&mesh);
+    let mut old_of_new = vec![0u32; new_of_old.len()];
+    for (old, &new) in new_of_old.iter().enumerate() {
+        old_of_new[new as usize] = old as u32;
+    }
+    let a = triangle_set(&mesh, |v| v);
+    let b = triangle_set(&other, |v| old_of_new[v as usize]);
+    let differing = a.symmetric_difference(&b).count();
+    eprintln!(
+        "{name}: {} simulated triangles, {differing} differ",
+        a.len()
+    );
+    assert_eq!(
+        differing,
+        0,
+        "{name}: {} of {} triangles of the simulated copy differ",
+        differing,
+        a.len()
+    );
+}
+
+#[test]
+fn ict_13k_copy_is_invariant_to_how_the_file_is_written() {
+    copy_is_invariant("ict_narrow_face_4loop.obj");
+}
+
+#[test]
+fn ict_2500_copy_is_invariant_to_how_the_file_is_written() {
+    copy_is_invariant("ict_narrow_face_dec2500_4loop.obj");
+}
+
+#[test]
+fn lee_perry_smith_copy_is_invariant_to_how_the_file_is_written() {
+    copy_is_invariant("leeperrysmith_face_open_4loop.obj");
+}
+
+/// ICT-FaceKit's mesh is mirror-symmetric (partners within 0.05 mm): its simulated copy is
+/// too — every kept triangle's mirror image is kept — and it stays near the requested size.
+#[test]
+fn ict_13k_copy_is_mirror_symmetric() {
+    let mesh = load("ict_narrow_face_4loop.obj");
+    let params = PipelineParams::default();
+    let prepared = prepare(&mesh, &params).unwrap();
+    let s = prepared.simplified.unwrap();
+    let loops = face_prep::topology::validate(&s.vertices, &s.triangles).unwrap();
+    let (canonical_from_input, face_loops) =
+        face_prep::orient::canonical_frame(&s.vertices, &s.triangles, &loops).unwrap();
+    let iod = face_prep::orient::loop_centroid(&s.vertices, &face_loops.eye_l).distance(
+        face_prep::orient::loop_centroid(&s.vertices, &face_loops.eye_r),
+    );
+    let c: Vec<DVec3> = s
+        .vertices
+        .iter()
+        .map(|&p| canonical_from_input.transform_point3(p) / iod)
+        .collect();
+    let mirror = mirror_map(&c, &s.triangles);
+    assert!(
+        mirror.is_some(),
+        "the simulated ICT 13k copy is not mirror-symmetric"
+    );
+    let n = s.triangles.len();
+    eprintln!("ICT 13k simulated copy: {n} triangles");
+    assert!(
+        (1200..=1800).contains(&n),
+        "{n} triangles, asked for {}",
+        params.large_face.target_triangles
+    );
+}
+
+/// The path each bundled face takes: the two symmetric meshes mirrored, the decimated ICT copy
+/// and the scan (asymmetric) in canonical order.
+#[test]
+fn symmetric_faces_are_simplified_as_mirrored_halves() {
+    let params = LargeFaceParams {
+        target_triangles: 400,
+        ..LargeFaceParams::default()
+    };
+    for (name, path) in [
+        ("mediapipe_canonical_4loop.obj", SimplifyPath::Mirrored),
+        ("ict_narrow_face_4loop.obj", SimplifyPath::Mirrored),
+        ("ict_narrow_face_dec2500_4loop.obj", SimplifyPath::Canonical),
+        ("leeperrysmith_face_open_4loop.obj", SimplifyPath::Canonical),
+    ] {
+        let mesh = load(name);
+        let (s, got) = simplify_face(&mesh.vertices, &mesh.triangles, &params).unwrap();
+        assert_eq!(got, path, "{name}");
+        let loops = face_prep::topology::validate(&s.vertices, &s.triangles).unwrap();
+        assert_eq!(loops.len(), 4, "{name}: the copy has {} loops", loops.len());
+        assert!(
+            s.triangles.len() <= 2 * params.target_triangles,
+            "{name}: {} triangles",
+            s.triangles.len()
+        );
+    }
+}
