@@ -109,8 +109,10 @@ pub const ALL: [Preset; 9] = [
         sliders: &[
             ("frontalis_l", 0.3),
             ("frontalis_r", 0.3),
-            ("corrugator_supercilii_l", -0.8),
-            ("corrugator_supercilii_r", -0.8),
+            // −0.6 of the corrugator's 0.6 strain: the brows come down as far as −0.8 of its
+            // former 0.45 did (a 15 mm mid-brow peak on ICT 13k at −0.8 read as a caricature).
+            ("corrugator_supercilii_l", -0.6),
+            ("corrugator_supercilii_r", -0.6),
             ("procerus", -0.6),
             ("levator_labii_superioris_l", -0.4),
             ("levator_labii_superioris_r", -0.4),
