@@ -29,7 +29,7 @@ pub const MIRROR_TOLERANCE_IOD: f64 = 2e-3;
 const QUANTUM: f64 = 1.0 / (1u64 << 20) as f64;
 
 /// How a face was simplified by [`simplify_face`].
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum SimplifyPath {
     /// Left half simplified and mirrored (a mirror-symmetric face).
     Mirrored,
@@ -37,6 +37,22 @@ pub enum SimplifyPath {
     Canonical,
     /// The face has no canonical frame (not four loops, say): simplified as written.
     AsWritten,
+}
+
+impl SimplifyPath {
+    /// A few words for reports, to follow "simplified".
+    ///
+    /// ```
+    /// use facebem::face_simplify::SimplifyPath;
+    /// assert_eq!(SimplifyPath::Canonical.describe(), "in the face's canonical frame and order");
+    /// ```
+    pub fn describe(self) -> &'static str {
+        match self {
+            SimplifyPath::Mirrored => "as a mirrored half of the mirror-symmetric face",
+            SimplifyPath::Canonical => "in the face's canonical frame and order",
+            SimplifyPath::AsWritten => "as written, without a canonical frame",
+        }
+    }
 }
 
 /// Simplifies a face (a valid front-face mesh with four loops) independently of its vertex

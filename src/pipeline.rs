@@ -57,6 +57,8 @@ pub struct PrecomputeReport {
     pub input_triangles: usize,
     /// Front triangles simulated (fewer than the input for a simplified large face).
     pub simulated_triangles: usize,
+    /// How a large face was simplified ([`crate::face_simplify`]); `None` when it was not.
+    pub simplify_path: Option<crate::face_simplify::SimplifyPath>,
     /// Boundary elements of the closed shell.
     pub shell_elements: usize,
     /// Unknowns of the dense system (3 per element).
@@ -243,6 +245,8 @@ pub struct PreparedRig {
     /// Input vertices peeled off with the rolled-in eyelids and lips (they follow the margin
     /// they hang from, [`Transfer::snap_to_margins`]).
     pub peeled_vertices: Vec<u32>,
+    /// How a large face was simplified; `None` when it was not.
+    pub simplify_path: Option<crate::face_simplify::SimplifyPath>,
 }
 
 /// The prep step alone (fast, no BEM): rolled-in parts peeled off, simplification of a large
@@ -267,12 +271,14 @@ pub fn prepare(mesh: &FaceMesh, params: &PipelineParams) -> Result<PreparedRig, 
         None => Vec::new(),
     };
     let base = peeled.as_ref().unwrap_or(&whole);
+    let mut simplify_path = None;
     let reduced = if base.triangles.len() > params.large_face.max_triangles {
-        let (s, _path) = crate::face_simplify::simplify_face(
+        let (s, path) = crate::face_simplify::simplify_face(
             &base.vertices,
             &base.triangles,
             &params.large_face,
         )?;
+        simplify_path = Some(path);
         Some(Simplified {
             original_vertex: s
                 .original_vertex
@@ -303,6 +309,7 @@ pub fn prepare(mesh: &FaceMesh, params: &PipelineParams) -> Result<PreparedRig, 
         simplified,
         rig,
         peeled_vertices,
+        simplify_path,
     })
 }
 
@@ -335,6 +342,7 @@ pub fn build_face_model(
         simplified,
         rig,
         peeled_vertices,
+        simplify_path,
     } = prepare(mesh, params)?;
     if rig.muscles.is_empty() {
         return Err(PipelineError::NoMuscles);
@@ -429,6 +437,7 @@ pub fn build_face_model(
     let report = PrecomputeReport {
         input_triangles: mesh.triangles.len(),
         simulated_triangles: simulated.triangles.len(),
+        simplify_path,
         shell_elements: rig.shell.triangles.len(),
         dofs: 3 * rig.shell.triangles.len(),
         shell_self_intersections,

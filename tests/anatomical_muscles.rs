@@ -392,6 +392,10 @@ fn landmark_asymmetry_mm(face: usize) -> f64 {
 /// 90 %).
 #[test]
 fn ict_13k_left_and_right_mirror_within_a_millimetre_at_corners_and_brows() {
+    assert_eq!(
+        model(3).report.simplify_path,
+        Some(facebem::face_simplify::SimplifyPath::Mirrored)
+    );
     let worst = landmark_asymmetry_mm(3);
     eprintln!("ICT 13k: worst landmark asymmetry {worst:.3} mm");
     assert!(worst <= 1.0, "{worst:.3} mm");

@@ -388,3 +388,34 @@ fn keep_rolled_in_simulates_the_whole_face() {
     let model = facebem::cache::load(peeled).unwrap();
     assert!(model.report.simulated_triangles < n);
 }
+
+/// `rig` says how a large face was simplified: ICT-FaceKit's mirror-symmetric mesh as a
+/// mirrored half, the decimated (asymmetric) copy in its canonical frame and order.
+#[test]
+fn rig_reports_how_a_large_face_was_simplified() {
+    let dir = tempfile::tempdir().unwrap();
+    for (face, expected) in [
+        (
+            "ict_narrow_face_4loop.obj",
+            "simplified as a mirrored half of the mirror-symmetric face",
+        ),
+        (
+            "ict_narrow_face_dec2500_4loop.obj",
+            "simplified in the face's canonical frame and order",
+        ),
+    ] {
+        let rig = dir.path().join(face.replace(".obj", ".rig"));
+        let out = facebem(&[
+            "rig",
+            s(&support::asset(face)),
+            "-o",
+            s(&rig),
+            "--target-triangles",
+            "600",
+        ]);
+        assert!(out.status.success(), "{}", stderr(&out));
+        assert!(stdout(&out).contains(expected), "{face}: {}", stdout(&out));
+        let model = facebem::cache::load(&rig).unwrap();
+        assert!(model.report.simplify_path.is_some());
+    }
+}

@@ -116,6 +116,7 @@ fn ict_13k_copy_is_mirror_symmetric() {
     let mesh = load("ict_narrow_face_4loop.obj");
     let params = PipelineParams::default();
     let prepared = prepare(&mesh, &params).unwrap();
+    assert_eq!(prepared.simplify_path, Some(SimplifyPath::Mirrored));
     let s = prepared.simplified.unwrap();
     let loops = face_prep::topology::validate(&s.vertices, &s.triangles).unwrap();
     let (canonical_from_input, face_loops) =

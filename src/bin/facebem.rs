@@ -349,8 +349,12 @@ fn rig(face: &Path, output: &Path, muscles: Option<&Path>, solver: &SolverArgs) 
     for w in r.warnings() {
         eprintln!("warning: {w}");
     }
+    let simplified = r
+        .simplify_path
+        .map(|p| format!(", simplified {}", p.describe()))
+        .unwrap_or_default();
     println!(
-        "{}: {} front triangles ({} simulated), {} shell elements, {} muscles; prep {:.2} s, solve {:.2} s",
+        "{}: {} front triangles ({} simulated{simplified}), {} shell elements, {} muscles; prep {:.2} s, solve {:.2} s",
         output.display(),
         r.input_triangles,
         r.simulated_triangles,
