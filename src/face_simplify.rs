@@ -115,6 +115,8 @@ struct Canonical {
     triangles: Vec<[u32; 3]>,
     /// Input vertex of each canonical vertex.
     input_vertex: Vec<u32>,
+    /// Number of boundary loops (four for a face).
+    loop_count: usize,
 }
 
 impl Canonical {
@@ -160,6 +162,7 @@ impl Canonical {
             positions,
             triangles: tris,
             input_vertex,
+            loop_count: loops.len(),
         })
     }
 }
@@ -371,8 +374,5 @@ fn simplify_mirrored(
     );
     let result = whole.subset(&glued);
     let loops = face_prep::topology::validate(&result.vertices, &result.triangles).ok()?;
-    let before = face_prep::topology::validate(&canon.positions, &canon.triangles)
-        .ok()?
-        .len();
-    (loops.len() == before).then_some(result)
+    (loops.len() == canon.loop_count).then_some(result)
 }
