@@ -606,11 +606,20 @@ impl ViewerApp {
                             model.basis.muscle_count()
                         ),
                         CacheStatus::Computed { save_error, .. } => format!(
-                            "Rig of {name} computed in {:.1} s ({} elements){}",
+                            "Rig of {name} computed in {:.1} s ({} elements{}){}",
                             model.report.prep_seconds
                                 + model.report.solve_seconds
                                 + model.report.transfer_seconds,
                             model.report.shell_elements,
+                            model
+                                .report
+                                .simplify_path
+                                .map(|p| format!(
+                                    "; {} triangles simulated, simplified {}",
+                                    model.report.simulated_triangles,
+                                    p.describe()
+                                ))
+                                .unwrap_or_default(),
                             save_error
                                 .as_ref()
                                 .map(|e| format!("; not cached: {e}"))

@@ -784,6 +784,16 @@ fn a_rig_with_intersecting_shell_elements_is_flagged() {
     let clean = harness.state().model().expect("rig computed").clone();
     assert_eq!(clean.report.shell_self_intersections, 0);
     assert!(!harness.state().message().is_some_and(|m| m.is_error));
+    // The status line says how the large face was simplified (the decimated ICT face is not
+    // mirror-symmetric).
+    let status = harness.state().message().cloned().unwrap().text;
+    assert!(
+        status.contains(&format!(
+            "{} triangles simulated, simplified in the face's canonical frame and order",
+            clean.report.simulated_triangles
+        )),
+        "{status}"
+    );
     let params = harness.state_mut().params_mut();
     params.peel_rolled_in = false;
     params.large_face.normal_weight = 0.0;
