@@ -75,9 +75,8 @@ pub fn simplify_face(
     triangles: &[[u32; 3]],
     params: &LargeFaceParams,
 ) -> Result<(Simplified, SimplifyPath), SimplifyError> {
-    let no_locks = vec![false; vertices.len()];
     let Some(canon) = Canonical::of(vertices, triangles) else {
-        let s = simplify_with_locks(vertices, triangles, params, &no_locks)?;
+        let s = simplify_with_locks(vertices, triangles, params, &[])?;
         return Ok((s, SimplifyPath::AsWritten));
     };
     let mirrored = mirror_map(&canon.positions, &canon.triangles)
@@ -85,8 +84,7 @@ pub fn simplify_face(
     let (s, path) = match mirrored {
         Some(s) => (s, SimplifyPath::Mirrored),
         None => {
-            let locks = vec![false; canon.positions.len()];
-            let s = simplify_with_locks(&canon.positions, &canon.triangles, params, &locks)?;
+            let s = simplify_with_locks(&canon.positions, &canon.triangles, params, &[])?;
             (s, SimplifyPath::Canonical)
         }
     };
@@ -267,23 +265,6 @@ fn side(t: [u32; 3], mirror: &[u32], positions: &[DVec3]) -> Option<i8> {
 /// How often [`simplify_mirrored`] locks more vertices after an interior midline edge.
 const MAX_MIDLINE_RETRIES: usize = 8;
 
-/// The vertices adjacent to each vertex.
-fn vertex_neighbours(triangles: &[[u32; 3]], count: usize) -> Vec<Vec<u32>> {
-    let mut n: Vec<Vec<u32>> = vec![Vec::new(); count];
-    for t in triangles {
-        for k in 0..3 {
-            let (a, b) = (t[k], t[(k + 1) % 3]);
-            n[a as usize].push(b);
-            n[b as usize].push(a);
-        }
-    }
-    for list in &mut n {
-        list.sort_unstable();
-        list.dedup();
-    }
-    n
-}
-
 /// Ends of the edges of `half` that join two midline vertices through the half's interior (held
 /// by two triangles, where a midline edge is a border held by one).
 fn midline_chords(half: &Simplified, on_midline: &dyn Fn(u32) -> bool) -> Vec<u32> {
@@ -345,7 +326,7 @@ fn simplify_mirrored(
     // A collapse onto a midline vertex can join two midline vertices by an edge through the
     // half's interior, which the mirror image would share (an edge of four triangles). Where
     // that happens, the vertices around both ends are locked and the half simplified again.
-    let neighbours = vertex_neighbours(&half.triangles, half.vertices.len());
+    let neighbours = face_prep::shell::vertex_adjacency(half.vertices.len(), &half.triangles);
     let mut kept = Vec::new();
     for _ in 0..MAX_MIDLINE_RETRIES {
         let s = simplify_with_locks(&half.vertices, &half.triangles, &half_params, &locks).ok()?;

@@ -8,52 +8,11 @@ use face_prep::FaceMesh;
 use facebem::face_simplify::{SimplifyPath, mirror_map, simplify_face};
 use facebem::large_face::LargeFaceParams;
 use facebem::{PipelineParams, prepare};
-use glam::{DAffine3, DQuat, DVec3};
+use glam::DVec3;
 use std::collections::BTreeSet;
 
 fn load(name: &str) -> FaceMesh {
     face_prep::load_face(&support::asset(name)).unwrap()
-}
-
-/// The face rotated about an odd axis, scaled ×10, moved, and with its vertices renumbered by a
-/// fixed permutation; returns the new mesh and, per original vertex, its new index.
-fn rewritten(mesh: &FaceMesh) -> (FaceMesh, Vec<u32>) {
-    let n = mesh.vertices.len();
-    let step = (1..n)
-        .map(|s| s * 7 + 3)
-        .find(|&s| gcd(s, n) == 1)
-        .unwrap_or(1);
-    // new index i holds old vertex (i * step) % n
-    let mut new_of_old = vec![0u32; n];
-    for new in 0..n {
-        new_of_old[(new * step) % n] = new as u32;
-    }
-    let moved = DAffine3::from_scale_rotation_translation(
-        DVec3::splat(10.0),
-        DQuat::from_axis_angle(DVec3::new(0.3, -0.8, 0.5).normalize(), 2.1),
-        DVec3::new(40.0, -7.0, 3.0),
-    );
-    let vertices: Vec<DVec3> = (0..n)
-        .map(|new| moved.transform_point3(mesh.vertices[(new * step) % n]))
-        .collect();
-    // Triangles also reordered (reversed) and each rotated by one corner.
-    let triangles: Vec<[u32; 3]> = mesh
-        .triangles
-        .iter()
-        .rev()
-        .map(|t| {
-            let t = t.map(|v| new_of_old[v as usize]);
-            [t[1], t[2], t[0]]
-        })
-        .collect();
-    (
-        FaceMesh::from_triangles(&vertices, &triangles).unwrap(),
-        new_of_old,
-    )
-}
-
-fn gcd(a: usize, b: usize) -> usize {
-    if b == 0 { a } else { gcd(b, a % b) }
 }
 
 /// The simulated copy as a set of triangles over input vertex ids, each triangle rotated to
@@ -73,7 +32,11 @@ fn triangle_set(mesh: &FaceMesh, map: impl Fn(u32) -> u32) -> BTreeSet<[u32; 3]>
 
 fn copy_is_invariant(name: &str) {
     let mesh = load(name);
-    let (other, new_of_old) = rewritten(&mesh);
+    let support::Rewritten {
+        mesh: other,
+        new_of_old,
+        ..
+    } = support::rewritten(&mesh);
     let mut old_of_new = vec![0u32; new_of_old.len()];
     for (old, &new) in new_of_old.iter().enumerate() {
         old_of_new[new as usize] = old as u32;

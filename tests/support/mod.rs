@@ -125,3 +125,51 @@ pub fn assert_valid(file: &Path) {
         }
     }
 }
+
+/// A face written differently: rotated about an odd axis, scaled ×10 and moved
+/// (`input_from_original`), its vertices renumbered by a fixed permutation (new index `i` holds
+/// original vertex `(i · step) mod n`, `new_of_old` maps back), its triangles in reverse order
+/// and each started at its second corner (same winding).
+pub struct Rewritten {
+    pub mesh: face_prep::FaceMesh,
+    pub new_of_old: Vec<u32>,
+    pub input_from_original: glam::DAffine3,
+}
+
+pub fn rewritten(mesh: &face_prep::FaceMesh) -> Rewritten {
+    use glam::{DAffine3, DQuat, DVec3};
+    fn gcd(a: usize, b: usize) -> usize {
+        if b == 0 { a } else { gcd(b, a % b) }
+    }
+    let n = mesh.vertices.len();
+    let step = (1..n)
+        .map(|s| s * 7 + 3)
+        .find(|&s| gcd(s, n) == 1)
+        .unwrap_or(1);
+    let mut new_of_old = vec![0u32; n];
+    for new in 0..n {
+        new_of_old[(new * step) % n] = new as u32;
+    }
+    let input_from_original = DAffine3::from_scale_rotation_translation(
+        DVec3::splat(10.0),
+        DQuat::from_axis_angle(DVec3::new(0.3, -0.8, 0.5).normalize(), 2.1),
+        DVec3::new(40.0, -7.0, 3.0),
+    );
+    let vertices: Vec<DVec3> = (0..n)
+        .map(|new| input_from_original.transform_point3(mesh.vertices[(new * step) % n]))
+        .collect();
+    let triangles: Vec<[u32; 3]> = mesh
+        .triangles
+        .iter()
+        .rev()
+        .map(|t| {
+            let t = t.map(|v| new_of_old[v as usize]);
+            [t[1], t[2], t[0]]
+        })
+        .collect();
+    Rewritten {
+        mesh: face_prep::FaceMesh::from_triangles(&vertices, &triangles).unwrap(),
+        new_of_old,
+        input_from_original,
+    }
+}
