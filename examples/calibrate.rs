@@ -8,7 +8,7 @@
 use std::path::{Path, PathBuf};
 
 use face_prep::muscle_model::MuscleModel;
-use facebem::measure::{FaceLandmarks, cosine, elevation_deg, flipped_triangles, max_length};
+use facebem::measure::{FaceLandmarks, cosine, elevation_deg, flipped_by, max_length};
 use facebem::{Control, FaceModel, PipelineParams, build_face_model, presets};
 use glam::DVec3;
 
@@ -22,15 +22,10 @@ fn main() -> anyhow::Result<()> {
         .map(PathBuf::from)
         .collect();
     if faces.is_empty() {
-        faces = [
-            "mediapipe_canonical_4loop.obj",
-            "ict_narrow_face_dec2500_4loop.obj",
-            "leeperrysmith_face_open_4loop.obj",
-            "ict_narrow_face_4loop.obj",
-        ]
-        .iter()
-        .map(|f| root.join("assets").join(f))
-        .collect();
+        faces = facebem::open::BUNDLED_FACES
+            .iter()
+            .map(|f| root.join("assets").join(f))
+            .collect();
     }
     let mut params = PipelineParams::default();
     if thesis {
@@ -157,14 +152,7 @@ fn row(model: &FaceModel, lm: &FaceLandmarks, label: &str, field: &[DVec3], n_tr
     let cl = lm.canonical_mm(field[lm.mouth_corner_l as usize]);
     let cr = lm.canonical_mm(field[lm.mouth_corner_r as usize]);
     let bl = lm.canonical_mm(field[lm.brow_l as usize]);
-    let posed: Vec<DVec3> = model
-        .mesh
-        .vertices
-        .iter()
-        .zip(field)
-        .map(|(a, b)| *a + *b)
-        .collect();
-    let flipped = flipped_triangles(&model.mesh.vertices, &posed, &model.mesh.triangles);
+    let flipped = flipped_by(&model.mesh.vertices, field, &model.mesh.triangles);
     let flips = flipped.len();
     if std::env::var_os("FLIPS").is_some() {
         for &t in flipped.iter().take(6) {

@@ -3,7 +3,7 @@
 //! brows' motion, the contour's motion, flipped triangles, and the mouth width change.
 //!
 //! ```text
-//! cargo run --release --example muscle_probe [-- face.obj ...] [-- --only id,id]
+//! cargo run --release --example muscle_probe [-- face.obj ...] [-- --only id,id] [-- --max-triangles N]
 //! ```
 
 use std::path::{Path, PathBuf};
@@ -20,23 +20,29 @@ fn main() -> anyhow::Result<()> {
         .find(|w| w[0] == "--only")
         .map(|w| w[1].split(',').map(str::to_owned).collect())
         .unwrap_or_default();
+    let mut params = PipelineParams::default();
+    if let Some(w) = args.windows(2).find(|w| w[0] == "--max-triangles") {
+        params.large_face.max_triangles = w[1].parse()?;
+    }
     let mut faces: Vec<PathBuf> = args
         .iter()
         .filter(|a| a.ends_with(".obj"))
         .map(PathBuf::from)
         .collect();
     if faces.is_empty() {
-        faces = vec![root.join("assets/mediapipe_canonical_4loop.obj")];
+        faces = vec![root.join("assets").join(facebem::open::DEFAULT_FACE_NAME)];
     }
     for face in &faces {
         let mesh = face_prep::load_face(face)?;
         let t = std::time::Instant::now();
-        let model = build_face_model(&mesh, &PipelineParams::default(), &Control::new())?;
+        let model = build_face_model(&mesh, &params, &Control::new())?;
         println!(
-            "{}: {} controls, {:.1} s",
+            "{}: {} controls, {:.1} s, {} triangles simulated ({:?})",
             face.display(),
             model.basis.muscle_ids.len(),
-            t.elapsed().as_secs_f64()
+            t.elapsed().as_secs_f64(),
+            model.report.simulated_triangles,
+            model.report.simplify_path
         );
         let lm = FaceLandmarks::of(&model).ok_or_else(|| anyhow::anyhow!("no landmarks"))?;
         let c = |v: u32| lm.canonical_mm(model.mesh.vertices[v as usize] - DVec3::ZERO);

@@ -112,6 +112,21 @@ impl FaceLandmarks {
         })
     }
 
+    /// Points of the input frame (a mesh's vertices) in the canonical frame, face units.
+    ///
+    /// ```
+    /// let mesh = facebem::open::default_face().unwrap();
+    /// let lm = facebem::measure::FaceLandmarks::of_mesh(
+    ///     &mesh, glam::DAffine3::IDENTITY, 1.0).unwrap();
+    /// assert_eq!(lm.canonical_points(&mesh.vertices), mesh.vertices);
+    /// ```
+    pub fn canonical_points(&self, points: &[DVec3]) -> Vec<DVec3> {
+        points
+            .iter()
+            .map(|&p| self.canonical_from_input.transform_point3(p))
+            .collect()
+    }
+
     /// A displacement of the input frame, in the canonical frame and in mm.
     pub fn canonical_mm(&self, d: DVec3) -> DVec3 {
         self.canonical_from_input.transform_vector3(d) * self.mm_per_unit
@@ -164,6 +179,20 @@ pub fn cosine(a: &[DVec3], b: &[DVec3]) -> f64 {
     } else {
         0.0
     }
+}
+
+/// Triangles that turn over when `neutral` is displaced by `field` (one displacement per
+/// vertex): [`flipped_triangles`] of the displaced mesh.
+///
+/// ```
+/// use glam::DVec3;
+/// let v = [DVec3::ZERO, DVec3::X, DVec3::Y];
+/// let fold = [DVec3::ZERO, DVec3::ZERO, DVec3::new(0.0, -2.0, 0.0)];
+/// assert_eq!(facebem::measure::flipped_by(&v, &fold, &[[0, 1, 2]]), vec![0]);
+/// ```
+pub fn flipped_by(neutral: &[DVec3], field: &[DVec3], triangles: &[[u32; 3]]) -> Vec<u32> {
+    let posed: Vec<DVec3> = neutral.iter().zip(field).map(|(a, b)| *a + *b).collect();
+    flipped_triangles(neutral, &posed, triangles)
 }
 
 /// Triangles whose normal reverses between `neutral` and `posed` (the dot product of the two

@@ -12,6 +12,20 @@ use crate::pipeline::{FaceModel, PipelineError, PipelineParams, build_face_model
 /// File name of the bundled default face (the smallest asset, MediaPipe canonical face).
 pub const DEFAULT_FACE_NAME: &str = "mediapipe_canonical_4loop.obj";
 
+/// File names, under the repository's `assets/`, of the four bundled faces the tests and the
+/// measuring examples run on: MediaPipe's canonical face (the default), the decimated and the
+/// full ICT-FaceKit face, and the Lee Perry-Smith scan.
+///
+/// ```
+/// assert_eq!(facebem::open::BUNDLED_FACES[0], facebem::open::DEFAULT_FACE_NAME);
+/// ```
+pub const BUNDLED_FACES: [&str; 4] = [
+    DEFAULT_FACE_NAME,
+    "ict_narrow_face_dec2500_4loop.obj",
+    "leeperrysmith_face_open_4loop.obj",
+    "ict_narrow_face_4loop.obj",
+];
+
 /// OBJ text of the bundled default face, compiled into the library.
 pub const DEFAULT_FACE_OBJ: &str = include_str!("../assets/mediapipe_canonical_4loop.obj");
 
