@@ -8,7 +8,9 @@
 use std::path::{Path, PathBuf};
 
 use face_prep::muscle_model::MuscleModel;
-use facebem::measure::{FaceLandmarks, cosine, elevation_deg, flipped_by, max_length};
+use facebem::measure::{
+    FaceLandmarks, SurfacePoint, cosine, elevation_deg, flipped_by, max_length,
+};
 use facebem::{Control, FaceModel, PipelineParams, build_face_model, presets};
 use glam::DVec3;
 
@@ -113,8 +115,12 @@ fn report(model: &FaceModel) -> anyhow::Result<()> {
     // Symmetry: left response vs mirrored right response at the landmarks.
     let mirror = |d: DVec3| DVec3::new(-d.x, d.y, d.z);
     let pairs = [
-        ("zygomaticus_major", lm.mouth_corner_l, lm.mouth_corner_r),
-        ("frontalis", lm.brow_l, lm.brow_r),
+        (
+            "zygomaticus_major",
+            SurfacePoint::vertex(lm.mouth_corner_l),
+            SurfacePoint::vertex(lm.mouth_corner_r),
+        ),
+        ("frontalis", lm.brow_point_l, lm.brow_point_r),
     ];
     for (name, vl, vr) in pairs {
         let (Some(kl), Some(kr)) = (
@@ -129,8 +135,8 @@ fn report(model: &FaceModel) -> anyhow::Result<()> {
         ) else {
             continue;
         };
-        let dl = lm.canonical_mm(model.basis.displacements[kl][vl as usize]);
-        let dr = lm.canonical_mm(model.basis.displacements[kr][vr as usize]);
+        let dl = lm.canonical_mm(vl.sample(&model.basis.displacements[kl]));
+        let dr = lm.canonical_mm(vr.sample(&model.basis.displacements[kr]));
         println!(
             "symmetry {name}: |L − mirror(R)| = {:.2} mm",
             (dl - mirror(dr)).length()
@@ -151,7 +157,7 @@ fn row(model: &FaceModel, lm: &FaceLandmarks, label: &str, field: &[DVec3], n_tr
         * lm.mm_per_unit;
     let cl = lm.canonical_mm(field[lm.mouth_corner_l as usize]);
     let cr = lm.canonical_mm(field[lm.mouth_corner_r as usize]);
-    let bl = lm.canonical_mm(field[lm.brow_l as usize]);
+    let bl = lm.canonical_mm(lm.brow_point_l.sample(field));
     let flipped = flipped_by(&model.mesh.vertices, field, &model.mesh.triangles);
     let flips = flipped.len();
     if std::env::var_os("FLIPS").is_some() {
@@ -225,28 +231,37 @@ fn calibration(model: &FaceModel, dir: &Path) -> anyhow::Result<()> {
         println!("{line}");
     }
     for (id, name, v) in [
-        ("zygomaticus_major_l", "mouthSmile_L", lm.mouth_corner_l),
-        ("zygomaticus_major_r", "mouthSmile_R", lm.mouth_corner_r),
-        ("frontalis_l", "browUp_L (inner+outer)", lm.brow_l),
-        ("frontalis_r", "browUp_R (inner+outer)", lm.brow_r),
+        (
+            "zygomaticus_major_l",
+            "mouthSmile_L",
+            SurfacePoint::vertex(lm.mouth_corner_l),
+        ),
+        (
+            "zygomaticus_major_r",
+            "mouthSmile_R",
+            SurfacePoint::vertex(lm.mouth_corner_r),
+        ),
+        ("frontalis_l", "browUp_L (inner+outer)", lm.brow_point_l),
+        ("frontalis_r", "browUp_R (inner+outer)", lm.brow_point_r),
     ] {
         let (Some(r), Some((_, c))) = (response(id), pairs.iter().find(|p| p.0 == name)) else {
             continue;
         };
-        let ratio = r[v as usize].length() / c[v as usize].length().max(1e-12);
+        let (rv, cv) = (v.sample(&r), v.sample(c));
+        let ratio = rv.length() / cv.length().max(1e-12);
         let side = if id.ends_with("_l") { 1.0 } else { -1.0 };
         println!(
             "  captured {name} at the landmark: {:.2} mm at {:.1}° (rig: {:.1}°)",
-            c[v as usize].length() * lm.mm_per_unit,
-            elevation_deg(lm.canonical_mm(c[v as usize]), side),
-            elevation_deg(lm.canonical_mm(r[v as usize]), side)
+            cv.length() * lm.mm_per_unit,
+            elevation_deg(lm.canonical_mm(cv), side),
+            elevation_deg(lm.canonical_mm(rv), side)
         );
         println!(
             "  {id} vs {name}: cosine {:.3}, landmark magnitude ratio {:.2} ({:.2} vs {:.2} mm)",
             cosine(&r, c),
             ratio,
-            r[v as usize].length() * lm.mm_per_unit,
-            c[v as usize].length() * lm.mm_per_unit
+            rv.length() * lm.mm_per_unit,
+            cv.length() * lm.mm_per_unit
         );
     }
     Ok(())

@@ -3,7 +3,7 @@
 //! brows' motion, the contour's motion, flipped triangles, and the mouth width change.
 //!
 //! ```text
-//! cargo run --release --example muscle_probe [-- face.obj ...] [-- --only id,id] [-- --max-triangles N]
+//! cargo run --release --example muscle_probe [-- face.obj ...] [-- --only id,id] [-- --max-triangles N] [-- --offset F]
 //! ```
 
 use std::path::{Path, PathBuf};
@@ -23,6 +23,12 @@ fn main() -> anyhow::Result<()> {
     let mut params = PipelineParams::default();
     if let Some(w) = args.windows(2).find(|w| w[0] == "--max-triangles") {
         params.large_face.max_triangles = w[1].parse()?;
+    }
+    // The shell's back-face offset and rim thickness, fraction of the face size (both 0.015 by
+    // default).
+    if let Some(w) = args.windows(2).find(|w| w[0] == "--offset") {
+        params.rig.offset = w[1].parse()?;
+        params.rig.thickness = params.rig.offset;
     }
     let mut faces: Vec<PathBuf> = args
         .iter()
@@ -70,8 +76,8 @@ fn main() -> anyhow::Result<()> {
             let at = c(imax as u32) - mouth_c;
             let cl = d[lm.mouth_corner_l as usize];
             let cr = d[lm.mouth_corner_r as usize];
-            let bl = d[lm.brow_l as usize];
-            let br = d[lm.brow_r as usize];
+            let bl = lm.brow_point_l.sample(&d);
+            let br = lm.brow_point_r.sample(&d);
             let width = (c(lm.mouth_corner_l) + cl).x - (c(lm.mouth_corner_r) + cr).x;
             let flips = flipped_triangles(&model.mesh.vertices, &posed, &model.mesh.triangles);
             println!(

@@ -12,7 +12,7 @@ use std::sync::OnceLock;
 
 use face_prep::MuscleKind;
 use face_prep::muscle_model::MuscleModel;
-use facebem::measure::{FaceLandmarks, cosine, elevation_deg, flipped_triangles};
+use facebem::measure::{FaceLandmarks, SurfacePoint, cosine, elevation_deg, flipped_triangles};
 use facebem::{Control, FaceModel, PipelineParams, build_face_model, presets};
 use glam::DVec3;
 
@@ -88,17 +88,17 @@ fn zygomaticus_moves_its_corner(face: usize, kind: MuscleKind, share: f64) {
     );
 }
 
-/// Frontalis at full contraction: the brow above each eye centre rises 7–13 mm; the outer
-/// contour (the forehead's top edge) moves less than the brow.
+/// Frontalis at full contraction: the brow point above each eye centre rises 7–13 mm; the
+/// outer contour (the forehead's top edge) moves less than the brow.
 fn frontalis_raises_the_brow(face: usize) {
     let m = model(face);
     let lm = landmarks(m);
     for (kind, brow) in [
-        (MuscleKind::FrontalisL, lm.brow_l),
-        (MuscleKind::FrontalisR, lm.brow_r),
+        (MuscleKind::FrontalisL, lm.brow_point_l),
+        (MuscleKind::FrontalisR, lm.brow_point_r),
     ] {
         let field = contraction(m, kind);
-        let up = lm.canonical_mm(field[brow as usize]).y;
+        let up = lm.canonical_mm(brow.sample(&field)).y;
         let contour = lm.contour_motion_mm(&field);
         eprintln!(
             "{} {}: brow up {up:.2} mm, contour {contour:.3} mm",
@@ -354,13 +354,31 @@ fn mediapipe_left_and_right_mirror_within_half_a_millimetre() {
 /// Left and mirrored right responses at the mouth corners and brows of a nearly symmetric face:
 /// the largest difference over every paired control, in mm.
 fn landmark_asymmetry_mm(face: usize) -> f64 {
+    landmark_asymmetry_at_mm(
+        face,
+        &[Landmarks::Corners, Landmarks::Brows, Landmarks::InnerBrows],
+    )
+}
+
+/// [`landmark_asymmetry_mm`] at the given landmarks only.
+fn landmark_asymmetry_at_mm(face: usize, which: &[Landmarks]) -> f64 {
     let m = model(face);
     let lm = landmarks(m);
-    let pairs = [
-        (lm.mouth_corner_l, lm.mouth_corner_r),
-        (lm.brow_l, lm.brow_r),
-        (lm.brow_inner_l, lm.brow_inner_r),
+    let all = [
+        (
+            SurfacePoint::vertex(lm.mouth_corner_l),
+            SurfacePoint::vertex(lm.mouth_corner_r),
+        ),
+        (lm.brow_point_l, lm.brow_point_r),
+        (lm.brow_inner_point_l, lm.brow_inner_point_r),
     ];
+    let kinds = [Landmarks::Corners, Landmarks::Brows, Landmarks::InnerBrows];
+    let pairs: Vec<(SurfacePoint, SurfacePoint)> = all
+        .iter()
+        .zip(kinds)
+        .filter(|(_, k)| which.contains(k))
+        .map(|(&p, _)| p)
+        .collect();
     let mut worst: f64 = 0.0;
     for kind in MuscleKind::ALL
         .into_iter()
@@ -368,14 +386,16 @@ fn landmark_asymmetry_mm(face: usize) -> f64 {
     {
         let l = contraction(m, kind);
         let r = contraction(m, kind.mirror());
-        for (vl, vr) in pairs {
-            let a = lm.canonical_mm(l[vl as usize]);
-            let b = lm.canonical_mm(r[vr as usize]);
+        for &(vl, vr) in &pairs {
+            let a = lm.canonical_mm(vl.sample(&l));
+            let b = lm.canonical_mm(vr.sample(&r));
             let d = (a - DVec3::new(-b.x, b.y, b.z)).length();
             if d > 0.5 {
                 eprintln!(
-                    "{} face {face}: landmark {vl}/{vr} differs by {d:.2} mm ({:.2} / {:.2} mm)",
+                    "{} face {face}: landmark {:?}/{:?} differs by {d:.2} mm ({:.2} / {:.2} mm)",
                     kind.id(),
+                    vl.corners,
+                    vr.corners,
                     a.length(),
                     b.length()
                 );
@@ -398,6 +418,20 @@ fn ict_13k_left_and_right_mirror_within_a_millimetre_at_corners_and_brows() {
     );
     let worst = landmark_asymmetry_mm(3);
     eprintln!("ICT 13k: worst landmark asymmetry {worst:.3} mm");
+    assert!(worst <= 1.0, "{worst:.3} mm");
+}
+
+/// The decimated ICT face is only nearly symmetric (its simplified copy is not mirrored), but
+/// every paired control mirrors within 1 mm at the brow points above the eye centres (issue
+/// 10; measured 0.71 mm, the corrugators; read at the nearest vertices instead, 3.9 mm apart).
+/// Known gaps, measured: the inner brows differ by up to 2.5 mm (the corrugators, 1.35 / 3.85
+/// mm; the decimated eye loops' medial ends are not mirror images), and the mouth corners:
+/// the left zygomaticus moves its corner 8.0 mm, the right one 12.7
+/// (`zygomaticus_ict_2500_left`, ignored).
+#[test]
+fn ict_2500_left_and_right_mirror_within_a_millimetre_at_the_brows() {
+    let worst = landmark_asymmetry_at_mm(1, &[Landmarks::Brows]);
+    eprintln!("ICT 2500: worst brow asymmetry {worst:.3} mm");
     assert!(worst <= 1.0, "{worst:.3} mm");
 }
 
@@ -486,28 +520,28 @@ fn ict_responses_match_captured_expressions() {
         (
             MuscleKind::ZygomaticusMajorL,
             captured("mouthSmile_L"),
-            lm.mouth_corner_l,
+            SurfacePoint::vertex(lm.mouth_corner_l),
         ),
         (
             MuscleKind::ZygomaticusMajorR,
             captured("mouthSmile_R"),
-            lm.mouth_corner_r,
+            SurfacePoint::vertex(lm.mouth_corner_r),
         ),
         (
             MuscleKind::FrontalisL,
             sum(captured("browInnerUp_L"), captured("browOuterUp_L")),
-            lm.brow_l,
+            lm.brow_point_l,
         ),
         (
             MuscleKind::FrontalisR,
             sum(captured("browInnerUp_R"), captured("browOuterUp_R")),
-            lm.brow_r,
+            lm.brow_point_r,
         ),
     ];
-    for (kind, c, v) in cases {
+    for (kind, c, at) in cases {
         let r = contraction(m, kind);
         let cos = cosine(&r, &c);
-        let ratio = r[v as usize].length() / c[v as usize].length();
+        let ratio = at.sample(&r).length() / at.sample(&c).length();
         eprintln!("{}: cosine {cos:.3}, landmark ratio {ratio:.2}", kind.id());
         assert!(cos >= 0.7, "{}: cosine {cos:.3}", kind.id());
         assert!(
@@ -556,31 +590,59 @@ fn subdivided(mesh: &face_prep::FaceMesh) -> face_prep::FaceMesh {
     face_prep::FaceMesh::from_triangles(&vertices, &triangles).unwrap()
 }
 
-/// Mouth-corner (zygomaticus major) and brow (frontalis) displacements of two models of the
+/// Which landmarks [`landmark_motion_agrees`] compares.
+#[derive(Clone, Copy, PartialEq)]
+enum Landmarks {
+    /// The mouth corners under the zygomatici.
+    Corners,
+    /// The brow points (above the eye centres) under the frontales.
+    Brows,
+    /// The inner brow points (above the eyes' medial ends) under the corrugators.
+    InnerBrows,
+}
+
+/// Mouth-corner (zygomaticus major) or brow (frontalis) displacements of two models of the
 /// same face at the given landmarks agree within 15 % (vector difference against the larger).
 fn landmark_motion_agrees(
     a: (&FaceModel, &FaceLandmarks),
     b: (&FaceModel, &FaceLandmarks),
+    which: Landmarks,
     what: &str,
 ) {
-    let cases = [
-        (
-            MuscleKind::ZygomaticusMajorL,
-            a.1.mouth_corner_l,
-            b.1.mouth_corner_l,
-        ),
-        (
-            MuscleKind::ZygomaticusMajorR,
-            a.1.mouth_corner_r,
-            b.1.mouth_corner_r,
-        ),
-        (MuscleKind::FrontalisL, a.1.brow_l, b.1.brow_l),
-        (MuscleKind::FrontalisR, a.1.brow_r, b.1.brow_r),
-    ];
+    let cases = match which {
+        Landmarks::Corners => [
+            (
+                MuscleKind::ZygomaticusMajorL,
+                SurfacePoint::vertex(a.1.mouth_corner_l),
+                SurfacePoint::vertex(b.1.mouth_corner_l),
+            ),
+            (
+                MuscleKind::ZygomaticusMajorR,
+                SurfacePoint::vertex(a.1.mouth_corner_r),
+                SurfacePoint::vertex(b.1.mouth_corner_r),
+            ),
+        ],
+        Landmarks::Brows => [
+            (MuscleKind::FrontalisL, a.1.brow_point_l, b.1.brow_point_l),
+            (MuscleKind::FrontalisR, a.1.brow_point_r, b.1.brow_point_r),
+        ],
+        Landmarks::InnerBrows => [
+            (
+                MuscleKind::CorrugatorSuperciliiL,
+                a.1.brow_inner_point_l,
+                b.1.brow_inner_point_l,
+            ),
+            (
+                MuscleKind::CorrugatorSuperciliiR,
+                a.1.brow_inner_point_r,
+                b.1.brow_inner_point_r,
+            ),
+        ],
+    };
     let mut worst = (0.0, "");
     for (kind, va, vb) in cases {
-        let da = a.1.canonical_mm(contraction(a.0, kind)[va as usize]);
-        let db = b.1.canonical_mm(contraction(b.0, kind)[vb as usize]);
+        let da = a.1.canonical_mm(va.sample(&contraction(a.0, kind)));
+        let db = b.1.canonical_mm(vb.sample(&contraction(b.0, kind)));
         let rel = (da - db).length() / da.length().max(db.length());
         eprintln!(
             "{what} {}: {:.2} / {:.2} mm, difference {:.0} %",
@@ -601,34 +663,91 @@ fn landmark_motion_agrees(
     );
 }
 
-/// Resolution independence (issue 10): MediaPipe against its 1 → 4 subdivided copy (3 408
-/// triangles, so simulated on a simplified copy), compared at the original's landmark vertices.
-/// Known gap: the brows agree (9.8 / 11.3 mm, 14 %), the corners do not (13.7 / 8.0 mm, 45 %).
-#[test]
-#[ignore = "known gap: MediaPipe's subdivided copy moves its corners 8.0 mm against 13.7 (see the issue note)"]
-fn mediapipe_and_its_subdivided_copy_agree_at_corners_and_brows() {
-    let base = model(0);
-    let lm = landmarks(base);
-    let fine_mesh = subdivided(&base.mesh);
-    let fine = build_face_model(&fine_mesh, &PipelineParams::default(), &Control::new()).unwrap();
-    let fine_lm = FaceLandmarks {
-        canonical_from_input: fine.rig.canonical_from_input,
-        mm_per_unit: fine.rig.mm_per_unit(),
-        ..lm.clone()
-    };
-    landmark_motion_agrees((base, &lm), (&fine, &fine_lm), "MediaPipe 1 -> 4");
+/// MediaPipe split 1 → 4 (3 408 triangles, so simulated on a simplified copy), computed once,
+/// with its landmarks: the original's corner vertices (the subdivision keeps the input's
+/// vertices first) and its own brow points (the same points: the eye loops' centres and tops do
+/// not change under midpoint subdivision).
+fn mediapipe_subdivided() -> &'static (FaceModel, FaceLandmarks) {
+    static FINE: OnceLock<(FaceModel, FaceLandmarks)> = OnceLock::new();
+    FINE.get_or_init(|| {
+        let base = model(0);
+        let lm = landmarks(base);
+        let fine = build_face_model(
+            &subdivided(&base.mesh),
+            &PipelineParams::default(),
+            &Control::new(),
+        )
+        .unwrap();
+        let own = landmarks(&fine);
+        let fine_lm = FaceLandmarks {
+            canonical_from_input: fine.rig.canonical_from_input,
+            mm_per_unit: fine.rig.mm_per_unit(),
+            brow_point_l: own.brow_point_l,
+            brow_point_r: own.brow_point_r,
+            ..lm
+        };
+        (fine, fine_lm)
+    })
 }
 
-/// Resolution independence (issue 10): the decimated ICT face against the 13k original.
-/// Known gap: left corner 8.0 / 12.8 mm (46 %), right corner 12.7 / 12.8 mm but 20 % apart in
-/// direction, left brow 4 %, right brow 7.3 / 10.9 mm (34 %).
+/// Resolution independence (issue 10) at the brows: MediaPipe and its 1 → 4 subdivided copy
+/// raise the brow points alike (measured 10.3 / 10.1 mm). Read at the nearest vertex instead,
+/// they seemed 14 % apart (9.6 / 11.3 mm): a vertex 4 mm off the point on the coarse face.
 #[test]
-#[ignore = "known gap: ICT 2500 and 13k differ by up to 46 % at the corners and brows (see the issue note)"]
-fn ict_2500_and_13k_agree_at_corners_and_brows() {
+fn mediapipe_and_its_subdivided_copy_raise_the_brows_alike() {
+    let base = model(0);
+    let (fine, fine_lm) = mediapipe_subdivided();
+    landmark_motion_agrees(
+        (base, &landmarks(base)),
+        (fine, fine_lm),
+        Landmarks::Brows,
+        "MediaPipe 1 -> 4",
+    );
+}
+
+/// Resolution independence (issue 10) at the mouth corners, MediaPipe against its subdivided
+/// copy. Known gap: 13.7 / 8.0 mm (45 %). The elastic solve is not the cause: the subdivided
+/// face simulated whole (`cargo run --release --example muscle_probe -- sub.obj
+/// --max-triangles 4000`, 78 s) moves its corners 13.7 mm; its 1 500-triangle copy drops the
+/// rolled-in corner vertex and carries it over from a zig-zag margin.
+#[test]
+#[ignore = "known gap: MediaPipe's subdivided copy moves its corners 8.0 mm against 13.7 (see the issue note)"]
+fn mediapipe_and_its_subdivided_copy_agree_at_the_corners() {
+    let base = model(0);
+    let (fine, fine_lm) = mediapipe_subdivided();
+    landmark_motion_agrees(
+        (base, &landmarks(base)),
+        (fine, fine_lm),
+        Landmarks::Corners,
+        "MediaPipe 1 -> 4",
+    );
+}
+
+/// Resolution independence (issue 10) at the brows: the decimated ICT face against the 13k
+/// original (measured: left 10.0 / 10.5 mm, right 9.2 / 10.5 mm; at the nearest vertices the
+/// right one seemed 34 % apart, 7.3 / 10.9 mm).
+#[test]
+fn ict_2500_and_13k_raise_the_brows_alike() {
     let (coarse, fine) = (model(1), model(3));
     landmark_motion_agrees(
         (coarse, &landmarks(coarse)),
         (fine, &landmarks(fine)),
+        Landmarks::Brows,
+        "ICT 2500 / 13k",
+    );
+}
+
+/// Resolution independence (issue 10) at the mouth corners, ICT 2500 against 13k.
+/// Known gap: left corner 8.0 / 12.8 mm (46 %), right corner 12.7 / 12.8 mm but 20 % apart in
+/// direction. ICT 2500 simulated whole moves its corners 10.7 / 11.7 mm.
+#[test]
+#[ignore = "known gap: ICT 2500 and 13k differ by up to 46 % at the corners (see the issue note)"]
+fn ict_2500_and_13k_agree_at_the_corners() {
+    let (coarse, fine) = (model(1), model(3));
+    landmark_motion_agrees(
+        (coarse, &landmarks(coarse)),
+        (fine, &landmarks(fine)),
+        Landmarks::Corners,
         "ICT 2500 / 13k",
     );
 }
