@@ -1,4 +1,5 @@
-//! Exact blink closure on the displayed mesh ([`face_prep::eyelid::pin`]).
+//! Exact blink closure on the displayed mesh ([`face_prep::eyelid::pin`]), and squints that
+//! keep the lids from crossing ([`keep_squints_open`]).
 //!
 //! A blink's response comes out of the BEM as element values averaged to vertices, and for a
 //! face simulated on a reduced copy it is then carried to the full mesh: neither lands the
@@ -8,8 +9,8 @@
 //! pinned onto their lower-margin points at full blink, the correction fading over the upper
 //! lid.
 
-use face_prep::eyelid::pin::{close_margins, close_rolled_margins};
-use face_prep::eyelid::{EyeMargins, LidAction, UPPER_LID_BAND_MM};
+use face_prep::eyelid::pin::{close_margins, close_rolled_margins, pin_and_spread};
+use face_prep::eyelid::{EyeMargins, LOWER_LID_BAND_MM, LidAction, UPPER_LID_BAND_MM};
 use face_prep::muscle_kind::Generator;
 use face_prep::{FaceMesh, FaceRig, MuscleKind, Side};
 use glam::DVec3;
@@ -110,4 +111,128 @@ pub(crate) fn close_blinks(
             ),
         }
     }
+}
+
+/// Rounds of [`keep_squints_open`] (each pins the lower-margin vertices still past the upper
+/// margin and spreads the change over the lower lid).
+pub const SQUINT_GUARD_ROUNDS: usize = 4;
+
+/// Keeps every squint field (the orbicularis oculi's orbital part, which lifts the lower lid)
+/// from lifting the lower margin of the displayed eye loop past the upper one at full squint:
+/// wherever, seen from the front at an upper-margin vertex, the lower margin would end higher
+/// than the upper one (or, where the neutral lids already overlap as on a slit scanned eye, any
+/// higher than it is at rest), the lower-margin vertices under it are pinned that much lower
+/// and the change is spread over the lower lid ([`pin_and_spread`], the upper margin and the
+/// corners held). Regression: Lee Perry-Smith's right eye, open 2.5 mm with its lids
+/// overlapping in the front view, had its lower margin lifted 0.18 mm past the upper one.
+pub(crate) fn keep_squints_open(
+    rig: &FaceRig,
+    mesh: &FaceMesh,
+    ids: &[String],
+    fields: &mut [Vec<DVec3>],
+) {
+    let squints: Vec<(usize, Side)> = ids
+        .iter()
+        .enumerate()
+        .filter_map(|(k, id)| {
+            let kind = MuscleKind::from_id(id)?;
+            matches!(kind.generator(), Generator::Lid(LidAction::Squint)).then(|| (k, kind.side()))
+        })
+        .collect();
+    if squints.is_empty() {
+        return;
+    }
+    let Ok(loops) = face_prep::topology::validate(&mesh.vertices, &mesh.triangles) else {
+        return;
+    };
+    let Ok((_, loops)) =
+        face_prep::orient::canonical_frame(&mesh.vertices, &mesh.triangles, &loops)
+    else {
+        return;
+    };
+    let canonical: Vec<DVec3> = mesh
+        .vertices
+        .iter()
+        .map(|&p| rig.canonical_from_input.transform_point3(p))
+        .collect();
+    // Up in the canonical frame, as an input-frame direction.
+    let up = rig.input_from_canonical().transform_vector3(DVec3::Y);
+    let radius = LOWER_LID_BAND_MM / rig.mm_per_unit();
+    for (k, side) in squints {
+        let shown = match side {
+            Side::Left => &loops.eye_l,
+            Side::Right => &loops.eye_r,
+            Side::Center => continue,
+        };
+        let Some(margins) = EyeMargins::of_loop(&canonical, shown, side) else {
+            continue;
+        };
+        let Some(field) = fields.get_mut(k) else {
+            continue;
+        };
+        if field.len() != canonical.len() {
+            continue;
+        }
+        let neutral_gaps = margins.vertical_gaps(&canonical);
+        let tolerance = 1e-6 * margins.opening_height(&canonical).max(f64::MIN_POSITIVE);
+        let mut held: Vec<u32> = margins.upper.clone();
+        held.extend([margins.medial, margins.lateral]);
+        for _ in 0..SQUINT_GUARD_ROUNDS {
+            // Full squint is slider −1: posed = neutral − field.
+            let posed: Vec<DVec3> = canonical
+                .iter()
+                .zip(field.iter())
+                .map(|(p, d)| *p - rig.canonical_from_input.transform_vector3(*d))
+                .collect();
+            let mut lower_by = vec![0.0f64; margins.lower.len()];
+            let interior = &margins.upper[1..margins.upper.len().saturating_sub(1).max(1)];
+            for (&u, g0) in interior.iter().zip(&neutral_gaps) {
+                let Some(g0) = g0 else { continue };
+                let Some((i, gap)) = lower_under(&posed, &margins.lower, posed[u as usize]) else {
+                    continue;
+                };
+                let deficit = g0.min(0.0) - gap;
+                if deficit > 0.0 {
+                    for j in [i, i + 1] {
+                        lower_by[j] = lower_by[j].max(deficit + tolerance);
+                    }
+                }
+            }
+            let pins: Vec<(u32, DVec3)> = margins
+                .lower
+                .iter()
+                .zip(&lower_by)
+                .filter(|&(v, &d)| d > 0.0 && !held.contains(v))
+                .map(|(&v, &d)| (v, field[v as usize] + up * d))
+                .collect();
+            if pins.is_empty() {
+                break;
+            }
+            pin_and_spread(&mesh.vertices, &mesh.triangles, field, &pins, &held, radius);
+        }
+    }
+}
+
+/// The segment of the lower margin `lower` (positions `p`) under the point `q` seen from the
+/// front, as [`EyeMargins::vertical_gaps`] picks it (of the segments spanning `q.x`, the one
+/// whose height there is largest): its first index in `lower` and `q`'s height above it.
+fn lower_under(p: &[DVec3], lower: &[u32], q: DVec3) -> Option<(usize, f64)> {
+    lower
+        .windows(2)
+        .enumerate()
+        .filter_map(|(i, w)| {
+            let (a, b) = (p[w[0] as usize], p[w[1] as usize]);
+            let (lo, hi) = (a.x.min(b.x), a.x.max(b.x));
+            if q.x < lo || q.x > hi {
+                return None;
+            }
+            let f = if hi > lo {
+                (q.x - a.x) / (b.x - a.x)
+            } else {
+                0.5
+            };
+            Some((i, a.y + f * (b.y - a.y)))
+        })
+        .max_by(|a, b| a.1.total_cmp(&b.1))
+        .map(|(i, y)| (i, q.y - y))
 }

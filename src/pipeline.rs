@@ -398,6 +398,7 @@ pub fn build_face_model(
         }
     };
     let muscle_ids: Vec<String> = rig.muscles.iter().map(muscle_id).collect();
+    crate::lid_closure::keep_squints_open(&rig, mesh, &muscle_ids, &mut displacements);
     crate::lid_closure::close_blinks(
         &rig,
         mesh,
