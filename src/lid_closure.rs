@@ -12,6 +12,7 @@
 use face_prep::eyelid::pin::{close_margins, close_rolled_margins, pin_and_spread};
 use face_prep::eyelid::{EyeMargins, LOWER_LID_BAND_MM, LidAction, UPPER_LID_BAND_MM};
 use face_prep::muscle_kind::Generator;
+use face_prep::orient::FaceLoops;
 use face_prep::{FaceMesh, FaceRig, MuscleKind, Side};
 use glam::DVec3;
 
@@ -31,30 +32,13 @@ pub(crate) fn close_blinks(
     ids: &[String],
     fields: &mut [Vec<DVec3>],
 ) {
-    let blinks: Vec<(usize, Side)> = ids
-        .iter()
-        .enumerate()
-        .filter_map(|(k, id)| {
-            let kind = MuscleKind::from_id(id)?;
-            matches!(kind.generator(), Generator::Lid(LidAction::Blink)).then(|| (k, kind.side()))
-        })
-        .collect();
+    let blinks = lid_controls(ids, LidAction::Blink);
     if blinks.is_empty() {
         return;
     }
-    let Ok(loops) = face_prep::topology::validate(&mesh.vertices, &mesh.triangles) else {
+    let Some((loops, canonical)) = displayed_eyes(rig, mesh) else {
         return;
     };
-    let Ok((_, loops)) =
-        face_prep::orient::canonical_frame(&mesh.vertices, &mesh.triangles, &loops)
-    else {
-        return;
-    };
-    let canonical: Vec<DVec3> = mesh
-        .vertices
-        .iter()
-        .map(|&p| rig.canonical_from_input.transform_point3(p))
-        .collect();
     // Simulated vertex → full-mesh vertex.
     let sim_to_full: Option<Vec<u32>> = reduced.map(|(s, simulated)| {
         let mut map = vec![u32::MAX; simulated.vertices.len()];
@@ -131,30 +115,13 @@ pub(crate) fn keep_squints_open(
     ids: &[String],
     fields: &mut [Vec<DVec3>],
 ) {
-    let squints: Vec<(usize, Side)> = ids
-        .iter()
-        .enumerate()
-        .filter_map(|(k, id)| {
-            let kind = MuscleKind::from_id(id)?;
-            matches!(kind.generator(), Generator::Lid(LidAction::Squint)).then(|| (k, kind.side()))
-        })
-        .collect();
+    let squints = lid_controls(ids, LidAction::Squint);
     if squints.is_empty() {
         return;
     }
-    let Ok(loops) = face_prep::topology::validate(&mesh.vertices, &mesh.triangles) else {
+    let Some((loops, canonical)) = displayed_eyes(rig, mesh) else {
         return;
     };
-    let Ok((_, loops)) =
-        face_prep::orient::canonical_frame(&mesh.vertices, &mesh.triangles, &loops)
-    else {
-        return;
-    };
-    let canonical: Vec<DVec3> = mesh
-        .vertices
-        .iter()
-        .map(|&p| rig.canonical_from_input.transform_point3(p))
-        .collect();
     // Up in the canonical frame, as an input-frame direction.
     let up = rig.input_from_canonical().transform_vector3(DVec3::Y);
     let radius = LOWER_LID_BAND_MM / rig.mm_per_unit();
@@ -188,7 +155,7 @@ pub(crate) fn keep_squints_open(
             let interior = &margins.upper[1..margins.upper.len().saturating_sub(1).max(1)];
             for (&u, g0) in interior.iter().zip(&neutral_gaps) {
                 let Some(g0) = g0 else { continue };
-                let Some((i, gap)) = lower_under(&posed, &margins.lower, posed[u as usize]) else {
+                let Some((i, gap)) = margins.lower_under(&posed, posed[u as usize]) else {
                     continue;
                 };
                 let deficit = g0.min(0.0) - gap;
@@ -213,26 +180,27 @@ pub(crate) fn keep_squints_open(
     }
 }
 
-/// The segment of the lower margin `lower` (positions `p`) under the point `q` seen from the
-/// front, as [`EyeMargins::vertical_gaps`] picks it (of the segments spanning `q.x`, the one
-/// whose height there is largest): its first index in `lower` and `q`'s height above it.
-fn lower_under(p: &[DVec3], lower: &[u32], q: DVec3) -> Option<(usize, f64)> {
-    lower
-        .windows(2)
+/// The controls of `ids` that are eyelid actions `action`, with their side.
+fn lid_controls(ids: &[String], action: LidAction) -> Vec<(usize, Side)> {
+    ids.iter()
         .enumerate()
-        .filter_map(|(i, w)| {
-            let (a, b) = (p[w[0] as usize], p[w[1] as usize]);
-            let (lo, hi) = (a.x.min(b.x), a.x.max(b.x));
-            if q.x < lo || q.x > hi {
-                return None;
-            }
-            let f = if hi > lo {
-                (q.x - a.x) / (b.x - a.x)
-            } else {
-                0.5
-            };
-            Some((i, a.y + f * (b.y - a.y)))
+        .filter_map(|(k, id)| {
+            let kind = MuscleKind::from_id(id)?;
+            matches!(kind.generator(), Generator::Lid(a) if a == action).then(|| (k, kind.side()))
         })
-        .max_by(|a, b| a.1.total_cmp(&b.1))
-        .map(|(i, y)| (i, q.y - y))
+        .collect()
+}
+
+/// The displayed mesh's loops and its vertices in the rig's canonical frame; `None` for a mesh
+/// without a face's four loops.
+fn displayed_eyes(rig: &FaceRig, mesh: &FaceMesh) -> Option<(FaceLoops, Vec<DVec3>)> {
+    let loops = face_prep::topology::validate(&mesh.vertices, &mesh.triangles).ok()?;
+    let (_, loops) =
+        face_prep::orient::canonical_frame(&mesh.vertices, &mesh.triangles, &loops).ok()?;
+    let canonical = mesh
+        .vertices
+        .iter()
+        .map(|&p| rig.canonical_from_input.transform_point3(p))
+        .collect();
+    Some((loops, canonical))
 }

@@ -192,27 +192,49 @@ impl EyeMargins {
         let n = self.upper.len();
         self.upper[1..n.saturating_sub(1).max(1)]
             .iter()
-            .map(|&v| {
-                let q = p[v as usize];
-                self.lower
-                    .windows(2)
-                    .filter_map(|w| {
-                        let (a, b) = (p[w[0] as usize], p[w[1] as usize]);
-                        let (lo, hi) = (a.x.min(b.x), a.x.max(b.x));
-                        if q.x < lo || q.x > hi {
-                            return None;
-                        }
-                        let f = if hi > lo {
-                            (q.x - a.x) / (b.x - a.x)
-                        } else {
-                            0.5
-                        };
-                        Some(a.y + f * (b.y - a.y))
-                    })
-                    .reduce(f64::max)
-                    .map(|y| q.y - y)
-            })
+            .map(|&v| self.lower_under(p, p[v as usize]).map(|(_, gap)| gap))
             .collect()
+    }
+
+    /// The segment of the lower margin under the point `q` seen from the front (of the
+    /// segments spanning `q.x`, the one highest there, as [`EyeMargins::vertical_gaps`] reads
+    /// it): the index in [`EyeMargins::lower`] of its first vertex, and `q`'s height above it.
+    /// `None` beyond the lower margin's x-range.
+    ///
+    /// ```
+    /// use face_prep::Side;
+    /// use face_prep::eyelid::EyeMargins;
+    /// use glam::DVec3;
+    /// let p = [
+    ///     DVec3::new(0.0, 0.0, 0.0),
+    ///     DVec3::new(1.0, 0.5, 0.0),
+    ///     DVec3::new(2.0, 0.0, 0.0),
+    ///     DVec3::new(1.0, -0.5, 0.0),
+    /// ];
+    /// let m = EyeMargins::of_loop(&p, &[0, 1, 2, 3], Side::Left).unwrap();
+    /// let (i, gap) = m.lower_under(&p, DVec3::new(1.5, 0.0, 0.0)).unwrap();
+    /// assert_eq!((m.lower[i], m.lower[i + 1]), (3, 2));
+    /// assert!((gap - 0.25).abs() < 1e-12);
+    /// ```
+    pub fn lower_under(&self, p: &[DVec3], q: DVec3) -> Option<(usize, f64)> {
+        self.lower
+            .windows(2)
+            .enumerate()
+            .filter_map(|(i, w)| {
+                let (a, b) = (p[w[0] as usize], p[w[1] as usize]);
+                let (lo, hi) = (a.x.min(b.x), a.x.max(b.x));
+                if q.x < lo || q.x > hi {
+                    return None;
+                }
+                let f = if hi > lo {
+                    (q.x - a.x) / (b.x - a.x)
+                } else {
+                    0.5
+                };
+                Some((i, a.y + f * (b.y - a.y)))
+            })
+            .reduce(|best, c| if c.1 > best.1 { c } else { best })
+            .map(|(i, y)| (i, q.y - y))
     }
 
     /// The largest vertical gap ([`EyeMargins::gaps`]): the eye's opening height.
