@@ -384,14 +384,30 @@ pub fn build_face_model(
                 .collect();
             let mut transfer =
                 Transfer::build(&mesh.vertices, &s).ok_or(PipelineError::NoMuscles)?;
-            if rig.params.muscle_model == face_prep::muscle_model::MuscleModel::Anatomical {
+            let anatomical =
+                rig.params.muscle_model == face_prep::muscle_model::MuscleModel::Anatomical;
+            // The mouth loop's corners that the copy does not hold (a rolled-in lip's inner
+            // corner, or one the simplification dropped) follow the copy's margin at their
+            // closest point, the commissure, instead of hanging between the two lips.
+            let corners = if anatomical {
+                missing_mouth_corners(mesh, &rig, &s)
+            } else {
+                Vec::new()
+            };
+            let hanging: Vec<u32> = peeled_vertices
+                .iter()
+                .copied()
+                .filter(|v| !corners.contains(v))
+                .collect();
+            if anatomical {
                 transfer.snap_to_margins(&mesh.vertices, &s, &peeled_vertices);
+                transfer.snap_to_margins(&mesh.vertices, &s, &corners);
             }
             let mut fields: Vec<Vec<DVec3>> =
                 on_copy.iter().map(|f| transfer.apply(&s, f)).collect();
-            if rig.params.muscle_model == face_prep::muscle_model::MuscleModel::Anatomical {
+            if anatomical {
                 for f in &mut fields {
-                    crate::rolled_in::hang_from_margins(f, &mesh.triangles, &peeled_vertices);
+                    crate::rolled_in::hang_from_margins(f, &mesh.triangles, &hanging);
                 }
             }
             (fields, Some(SimplifiedFace { mesh: s, transfer }))
@@ -479,4 +495,20 @@ fn check_cancel(control: &Control) -> Result<(), PipelineError> {
     } else {
         Ok(())
     }
+}
+
+/// The input mouth loop's corners (its extreme vertices in the rig's canonical ±x, the
+/// landmarks [`crate::measure::FaceLandmarks`] measures) that the simulated copy `copy` does
+/// not hold. Regression: ICT 13k's rolled-in corners, hung harmonically between the two lips'
+/// flaps, moved 12.8 mm at full zygomaticus while the commissure beside them moved 13.8.
+fn missing_mouth_corners(mesh: &FaceMesh, rig: &FaceRig, copy: &Simplified) -> Vec<u32> {
+    let Some(lm) =
+        crate::measure::FaceLandmarks::of_mesh(mesh, rig.canonical_from_input, rig.mm_per_unit())
+    else {
+        return Vec::new();
+    };
+    [lm.mouth_corner_l, lm.mouth_corner_r]
+        .into_iter()
+        .filter(|v| !copy.original_vertex.contains(v))
+        .collect()
 }

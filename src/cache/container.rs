@@ -28,8 +28,9 @@ pub const MAGIC: [u8; 8] = *b"FACEBEM\x1a";
 /// `Generator::Sphincter`; 12: the jaw opening as the chord of its arc, 0.5 rad, 6 mm glide; 13: large faces simplified in
 /// their canonical frame and, when mirror-symmetric, as a mirrored half,
 /// [`crate::face_simplify`]; 14: squints that keep the lids from crossing,
-/// `lid_closure::keep_squints_open`).
-pub const FORMAT_VERSION: u32 = 14;
+/// `lid_closure::keep_squints_open`; 15: the input mouth corners a copy does not hold follow
+/// its margin instead of hanging between the lips).
+pub const FORMAT_VERSION: u32 = 15;
 /// Size of the fixed header in bytes.
 pub const HEADER_LEN: usize = 8 + 4 + 32 + 32 + 8 + 32;
 
