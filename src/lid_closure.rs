@@ -12,7 +12,6 @@
 use face_prep::eyelid::pin::{close_margins, close_rolled_margins, pin_and_spread};
 use face_prep::eyelid::{EyeMargins, LOWER_LID_BAND_MM, LidAction, UPPER_LID_BAND_MM};
 use face_prep::muscle_kind::Generator;
-use face_prep::orient::FaceLoops;
 use face_prep::{FaceMesh, FaceRig, MuscleKind, Side};
 use glam::DVec3;
 
@@ -36,7 +35,7 @@ pub(crate) fn close_blinks(
     if blinks.is_empty() {
         return;
     }
-    let Some((loops, canonical)) = displayed_eyes(rig, mesh) else {
+    let Some((loops, canonical)) = crate::measure::canonical_loops(rig, mesh) else {
         return;
     };
     // Simulated vertex → full-mesh vertex.
@@ -108,7 +107,7 @@ pub const SQUINT_GUARD_ROUNDS: usize = 4;
 /// higher than it is at rest), the lower-margin vertices under it are pinned that much lower
 /// and the change is spread over the lower lid ([`pin_and_spread`], the upper margin and the
 /// corners held). Regression: Lee Perry-Smith's right eye, open 2.5 mm with its lids
-/// overlapping in the front view, had its lower margin lifted 0.18 mm past the upper one.
+/// overlapping in the front view, had its lower margin lifted 0.13 mm past the upper one.
 pub(crate) fn keep_squints_open(
     rig: &FaceRig,
     mesh: &FaceMesh,
@@ -119,7 +118,7 @@ pub(crate) fn keep_squints_open(
     if squints.is_empty() {
         return;
     }
-    let Some((loops, canonical)) = displayed_eyes(rig, mesh) else {
+    let Some((loops, canonical)) = crate::measure::canonical_loops(rig, mesh) else {
         return;
     };
     // Up in the canonical frame, as an input-frame direction.
@@ -189,18 +188,4 @@ fn lid_controls(ids: &[String], action: LidAction) -> Vec<(usize, Side)> {
             matches!(kind.generator(), Generator::Lid(a) if a == action).then(|| (k, kind.side()))
         })
         .collect()
-}
-
-/// The displayed mesh's loops and its vertices in the rig's canonical frame; `None` for a mesh
-/// without a face's four loops.
-fn displayed_eyes(rig: &FaceRig, mesh: &FaceMesh) -> Option<(FaceLoops, Vec<DVec3>)> {
-    let loops = face_prep::topology::validate(&mesh.vertices, &mesh.triangles).ok()?;
-    let (_, loops) =
-        face_prep::orient::canonical_frame(&mesh.vertices, &mesh.triangles, &loops).ok()?;
-    let canonical = mesh
-        .vertices
-        .iter()
-        .map(|&p| rig.canonical_from_input.transform_point3(p))
-        .collect();
-    Some((loops, canonical))
 }

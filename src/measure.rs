@@ -140,6 +140,42 @@ impl SurfacePoint {
     }
 }
 
+/// The loops of the displayed (input) mesh and its vertices in the rig's canonical frame;
+/// `None` for a mesh without a face's four loops.
+pub(crate) fn canonical_loops(
+    rig: &face_prep::FaceRig,
+    mesh: &FaceMesh,
+) -> Option<(FaceLoops, Vec<DVec3>)> {
+    let loops = face_prep::topology::validate(&mesh.vertices, &mesh.triangles).ok()?;
+    let (_, loops) = canonical_frame(&mesh.vertices, &mesh.triangles, &loops).ok()?;
+    let canonical = mesh
+        .vertices
+        .iter()
+        .map(|&p| rig.canonical_from_input.transform_point3(p))
+        .collect();
+    Some((loops, canonical))
+}
+
+/// The mouth corners: the vertices of the mouth loop `mouth` of largest and smallest canonical
+/// x (`points` in the canonical frame), the face's left corner first; `None` for an empty loop.
+///
+/// ```
+/// use glam::DVec3;
+/// let p = [DVec3::new(-2.0, 0.0, 0.0), DVec3::new(0.0, 1.0, 0.0), DVec3::new(2.0, 0.0, 0.0)];
+/// assert_eq!(facebem::measure::mouth_corners(&p, &[0, 1, 2]), Some((2, 0)));
+/// ```
+pub fn mouth_corners(points: &[DVec3], mouth: &[u32]) -> Option<(u32, u32)> {
+    let x = |v: u32| points.get(v as usize).map_or(f64::NAN, |p| p.x);
+    let extreme = |sign: f64| {
+        mouth
+            .iter()
+            .copied()
+            .filter(|&v| x(v).is_finite())
+            .max_by(|&a, &b| (sign * x(a)).total_cmp(&(sign * x(b))))
+    };
+    Some((extreme(1.0)?, extreme(-1.0)?))
+}
+
 /// Height of the brow landmark above the eye loop's top, in interocular distances (0.25 iod ≈
 /// 16 mm on an adult: the middle of the eyebrow).
 pub const BROW_ABOVE_EYE_TOP_IOD: f64 = 0.25;
@@ -171,13 +207,7 @@ impl FaceLandmarks {
             .iter()
             .map(|&p| canonical_from_input.transform_point3(p))
             .collect();
-        let extreme = |lp: &[u32], sign: f64| {
-            lp.iter()
-                .copied()
-                .max_by(|&a, &b| (sign * c[a as usize].x).total_cmp(&(sign * c[b as usize].x)))
-        };
-        let mouth_corner_l = extreme(&loops.mouth, 1.0)?;
-        let mouth_corner_r = extreme(&loops.mouth, -1.0)?;
+        let (mouth_corner_l, mouth_corner_r) = mouth_corners(&c, &loops.mouth)?;
         let eye_l = loop_centroid(&c, &loops.eye_l);
         let eye_r = loop_centroid(&c, &loops.eye_r);
         let iod = eye_l.truncate().distance(eye_r.truncate());

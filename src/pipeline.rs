@@ -400,8 +400,9 @@ pub fn build_face_model(
                 .filter(|v| !corners.contains(v))
                 .collect();
             if anatomical {
-                transfer.snap_to_margins(&mesh.vertices, &s, &peeled_vertices);
-                transfer.snap_to_margins(&mesh.vertices, &s, &corners);
+                // Peeled vertices and dropped corners alike start from the closest margin point.
+                let snapped: Vec<u32> = hanging.iter().chain(&corners).copied().collect();
+                transfer.snap_to_margins(&mesh.vertices, &s, &snapped);
             }
             let mut fields: Vec<Vec<DVec3>> =
                 on_copy.iter().map(|f| transfer.apply(&s, f)).collect();
@@ -502,13 +503,16 @@ fn check_cancel(control: &Control) -> Result<(), PipelineError> {
 /// not hold. Regression: ICT 13k's rolled-in corners, hung harmonically between the two lips'
 /// flaps, moved 12.8 mm at full zygomaticus while the commissure beside them moved 13.8.
 fn missing_mouth_corners(mesh: &FaceMesh, rig: &FaceRig, copy: &Simplified) -> Vec<u32> {
-    let Some(lm) =
-        crate::measure::FaceLandmarks::of_mesh(mesh, rig.canonical_from_input, rig.mm_per_unit())
-    else {
+    let Some((loops, canonical)) = crate::measure::canonical_loops(rig, mesh) else {
         return Vec::new();
     };
-    [lm.mouth_corner_l, lm.mouth_corner_r]
+    let Some((left, right)) = crate::measure::mouth_corners(&canonical, &loops.mouth) else {
+        return Vec::new();
+    };
+    let mut missing: Vec<u32> = [left, right]
         .into_iter()
         .filter(|v| !copy.original_vertex.contains(v))
-        .collect()
+        .collect();
+    missing.dedup();
+    missing
 }
