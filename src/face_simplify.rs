@@ -16,7 +16,7 @@
 //! copy is symmetric too. The midline stays a chain of midline vertices: its vertices only
 //! collapse along it and the points where it meets a contour are locked.
 
-use crate::large_face::{LargeFaceParams, Simplified, SimplifyError, simplify_with_locks};
+use crate::large_face::{LargeFaceParams, Simplified, SimplifyError, simplify_anchored};
 use glam::DVec3;
 use std::collections::HashMap;
 
@@ -75,16 +75,58 @@ pub fn simplify_face(
     triangles: &[[u32; 3]],
     params: &LargeFaceParams,
 ) -> Result<(Simplified, SimplifyPath), SimplifyError> {
+    simplify_face_keeping(vertices, triangles, params, &[])
+}
+
+/// [`simplify_face`] that keeps the vertices `keep` (indices into `vertices`; out-of-range
+/// ones are ignored) in the copy. Kept border vertices anchor the border's resampling
+/// ([`crate::large_face::border_locks_anchored`]). On a mirror-symmetric face a kept vertex
+/// keeps its mirror image too.
+///
+/// ```
+/// use facebem::face_simplify::simplify_face_keeping;
+/// use facebem::large_face::LargeFaceParams;
+/// let mesh = facebem::open::default_face().unwrap();
+/// let params = LargeFaceParams { target_triangles: 300, ..LargeFaceParams::default() };
+/// let (copy, _) = simplify_face_keeping(&mesh.vertices, &mesh.triangles, &params, &[7]).unwrap();
+/// assert!(copy.original_vertex.contains(&7));
+/// ```
+pub fn simplify_face_keeping(
+    vertices: &[DVec3],
+    triangles: &[[u32; 3]],
+    params: &LargeFaceParams,
+    keep: &[u32],
+) -> Result<(Simplified, SimplifyPath), SimplifyError> {
+    let flags = |count: usize, index_of: &dyn Fn(u32) -> u32| {
+        let mut flags = vec![false; count];
+        for &v in keep.iter().filter(|&&v| (v as usize) < vertices.len()) {
+            if let Some(f) = flags.get_mut(index_of(v) as usize) {
+                *f = true;
+            }
+        }
+        flags
+    };
     let Some(canon) = Canonical::of(vertices, triangles) else {
-        let s = simplify_with_locks(vertices, triangles, params, &[])?;
+        let s = simplify_anchored(
+            vertices,
+            triangles,
+            params,
+            &[],
+            &flags(vertices.len(), &|v| v),
+        )?;
         return Ok((s, SimplifyPath::AsWritten));
     };
+    let mut canonical_of = vec![0u32; vertices.len()];
+    for (c, &v) in canon.input_vertex.iter().enumerate() {
+        canonical_of[v as usize] = c as u32;
+    }
+    let kept = flags(canon.positions.len(), &|v| canonical_of[v as usize]);
     let mirrored = mirror_map(&canon.positions, &canon.triangles)
-        .and_then(|mirror| simplify_mirrored(&canon, &mirror, params));
+        .and_then(|mirror| simplify_mirrored(&canon, &mirror, params, &kept));
     let (s, path) = match mirrored {
         Some(s) => (s, SimplifyPath::Mirrored),
         None => {
-            let s = simplify_with_locks(&canon.positions, &canon.triangles, params, &[])?;
+            let s = simplify_anchored(&canon.positions, &canon.triangles, params, &[], &kept)?;
             (s, SimplifyPath::Canonical)
         }
     };
@@ -293,6 +335,7 @@ fn simplify_mirrored(
     canon: &Canonical,
     mirror: &[u32],
     params: &LargeFaceParams,
+    kept: &[bool],
 ) -> Option<Simplified> {
     let whole = Simplified::whole(&canon.positions, &canon.triangles);
     let left: Vec<[u32; 3]> = canon
@@ -309,6 +352,14 @@ fn simplify_mirrored(
         let c = half.original_vertex[h as usize];
         mirror[c as usize] == c
     };
+    let is_kept = |c: u32| {
+        kept.get(c as usize).copied().unwrap_or(false)
+            || kept
+                .get(mirror[c as usize] as usize)
+                .copied()
+                .unwrap_or(false)
+    };
+    let anchors: Vec<bool> = half.original_vertex.iter().map(|&c| is_kept(c)).collect();
     let mut locks = vec![false; half.vertices.len()];
     for lp in &half_loops {
         for i in 0..lp.len() {
@@ -329,7 +380,14 @@ fn simplify_mirrored(
     let neighbours = face_prep::shell::vertex_adjacency(half.vertices.len(), &half.triangles);
     let mut kept = Vec::new();
     for _ in 0..MAX_MIDLINE_RETRIES {
-        let s = simplify_with_locks(&half.vertices, &half.triangles, &half_params, &locks).ok()?;
+        let s = simplify_anchored(
+            &half.vertices,
+            &half.triangles,
+            &half_params,
+            &locks,
+            &anchors,
+        )
+        .ok()?;
         let across = midline_chords(&s, &|v| on_midline(s.original_vertex[v as usize]));
         kept = s
             .triangles

@@ -179,6 +179,28 @@ pub fn simplify_with_locks(
     params: &LargeFaceParams,
     extra_locks: &[bool],
 ) -> Result<Simplified, SimplifyError> {
+    simplify_anchored(vertices, triangles, params, extra_locks, &[])
+}
+
+/// [`simplify_with_locks`] that also keeps the vertices flagged in `anchors` and resamples the
+/// borders from the anchored border vertices ([`border_locks_anchored`]).
+///
+/// ```
+/// use facebem::large_face::{LargeFaceParams, simplify_anchored};
+/// let mesh = facebem::open::default_face().unwrap();
+/// let params = LargeFaceParams { target_triangles: 200, ..LargeFaceParams::default() };
+/// let mut anchors = vec![false; mesh.vertices.len()];
+/// anchors[61] = true;
+/// let s = simplify_anchored(&mesh.vertices, &mesh.triangles, &params, &[], &anchors).unwrap();
+/// assert!(s.original_vertex.contains(&61));
+/// ```
+pub fn simplify_anchored(
+    vertices: &[DVec3],
+    triangles: &[[u32; 3]],
+    params: &LargeFaceParams,
+    extra_locks: &[bool],
+    anchors: &[bool],
+) -> Result<Simplified, SimplifyError> {
     let target_triangles = params.target_triangles;
     if target_triangles < 16 {
         return Err(SimplifyError::TargetTooSmall(target_triangles));
@@ -214,7 +236,7 @@ pub fn simplify_with_locks(
             let spacing =
                 params.border_spacing * target_edge_length(vertices, triangles, target_triangles);
             (
-                border_locks(vertices, &loops, spacing),
+                border_locks_anchored(vertices, &loops, spacing, anchors),
                 meshopt::SimplifyOptions::None,
             )
         }
@@ -225,6 +247,9 @@ pub fn simplify_with_locks(
     };
     for (lock, &extra) in locks.iter_mut().zip(extra_locks) {
         *lock |= extra;
+    }
+    for (lock, &anchor) in locks.iter_mut().zip(anchors) {
+        *lock |= anchor;
     }
     let result = match meshopt::VertexDataAdapter::new(&bytes, 12, 0) {
         Ok(adapter) => meshopt::simplify_with_attributes_and_locks(
@@ -264,16 +289,67 @@ fn target_edge_length(vertices: &[DVec3], triangles: &[[u32; 3]], target: usize)
 /// vertex and then each vertex at least `spacing` of arc length after the last locked one
 /// (and at least half of it before the first).
 pub fn border_locks(vertices: &[DVec3], loops: &[Vec<u32>], spacing: f64) -> Vec<bool> {
+    border_locks_anchored(vertices, loops, spacing, &[])
+}
+
+/// [`border_locks`] resampled from anchors: every border vertex flagged in `anchors` (one flag
+/// per vertex; a shorter slice leaves the rest unflagged) is locked, and each loop holding one
+/// is resampled from its anchors, so no other lock falls within half a spacing of an anchor
+/// (a lock beside a kept mouth corner would leave a sliver there). Loops without an anchor
+/// are resampled as [`border_locks`] does.
+///
+/// ```
+/// use facebem::large_face::border_locks_anchored;
+/// use glam::DVec3;
+/// // A square loop of 8 vertices, 1 apart; vertex 3 anchored, spacing 2.
+/// let v: Vec<DVec3> = [(0., 0.), (1., 0.), (2., 0.), (2., 1.), (2., 2.), (1., 2.), (0., 2.), (0., 1.)]
+///     .iter().map(|&(x, y)| DVec3::new(x, y, 0.0)).collect();
+/// let lp = vec![(0..8u32).collect::<Vec<_>>()];
+/// let mut anchors = vec![false; 8];
+/// anchors[3] = true;
+/// let locks = border_locks_anchored(&v, &lp, 2.0, &anchors);
+/// let locked: Vec<usize> = (0..8).filter(|&i| locks[i]).collect();
+/// assert_eq!(locked, vec![1, 3, 5, 7]);
+/// ```
+pub fn border_locks_anchored(
+    vertices: &[DVec3],
+    loops: &[Vec<u32>],
+    spacing: f64,
+    anchors: &[bool],
+) -> Vec<bool> {
     let mut locks = vec![false; vertices.len()];
     let p = |v: u32| vertices[v as usize];
+    let anchored = |v: u32| anchors.get(v as usize).copied().unwrap_or(false);
     for lp in loops {
-        let Some(&start) = lp.first() else { continue };
-        locks[start as usize] = true;
+        let n = lp.len();
+        let Some(first) = lp
+            .iter()
+            .position(|&v| anchored(v))
+            .or((n > 0).then_some(0))
+        else {
+            continue;
+        };
+        // The loop from its first anchor (or first vertex), closed back onto it.
+        let walk: Vec<u32> = (0..=n).map(|k| lp[(first + k) % n]).collect();
+        // The next anchor ahead of each walk vertex (the closing start counts).
+        let mut next_anchor = vec![walk[walk.len() - 1]; walk.len()];
+        for k in (0..walk.len() - 1).rev() {
+            let after = walk[k + 1];
+            next_anchor[k] = if anchored(after) {
+                after
+            } else {
+                next_anchor[k + 1]
+            };
+        }
+        locks[walk[0] as usize] = true;
         let mut since = 0.0;
-        for w in lp.windows(2) {
-            since += p(w[0]).distance(p(w[1]));
-            if since >= spacing && p(w[1]).distance(p(start)) >= 0.5 * spacing {
-                locks[w[1] as usize] = true;
+        for k in 1..walk.len() - 1 {
+            since += p(walk[k - 1]).distance(p(walk[k]));
+            let v = walk[k];
+            if anchored(v)
+                || (since >= spacing && p(v).distance(p(next_anchor[k])) >= 0.5 * spacing)
+            {
+                locks[v as usize] = true;
                 since = 0.0;
             }
         }

@@ -273,10 +273,12 @@ pub fn prepare(mesh: &FaceMesh, params: &PipelineParams) -> Result<PreparedRig, 
     let base = peeled.as_ref().unwrap_or(&whole);
     let mut simplify_path = None;
     let reduced = if base.triangles.len() > params.large_face.max_triangles {
-        let (s, path) = crate::face_simplify::simplify_face(
+        let keep = kept_mouth_corners(mesh, base);
+        let (s, path) = crate::face_simplify::simplify_face_keeping(
             &base.vertices,
             &base.triangles,
             &params.large_face,
+            &keep,
         )?;
         simplify_path = Some(path);
         Some(Simplified {
@@ -496,6 +498,35 @@ fn check_cancel(control: &Control) -> Result<(), PipelineError> {
     } else {
         Ok(())
     }
+}
+
+/// The input mouth loop's corners (its extreme vertices in the canonical ±x, the landmarks
+/// [`crate::measure::FaceLandmarks`] measures) that the reduced copy `base` holds, as indices
+/// into `base`: a large face's simplification keeps them. Regression: MediaPipe subdivided 1 →
+/// 4 lost its left corner in the 1500-triangle copy and moved it 8.0 mm at full zygomaticus
+/// where the face itself moves it 13.7.
+fn kept_mouth_corners(mesh: &FaceMesh, base: &Simplified) -> Vec<u32> {
+    let Ok(loops) = face_prep::topology::validate(&mesh.vertices, &mesh.triangles) else {
+        return Vec::new();
+    };
+    let Ok((canonical_from_input, face_loops)) =
+        face_prep::orient::canonical_frame(&mesh.vertices, &mesh.triangles, &loops)
+    else {
+        return Vec::new();
+    };
+    let canonical: Vec<DVec3> = mesh
+        .vertices
+        .iter()
+        .map(|&p| canonical_from_input.transform_point3(p))
+        .collect();
+    let Some((left, right)) = crate::measure::mouth_corners(&canonical, &face_loops.mouth) else {
+        return Vec::new();
+    };
+    [left, right]
+        .into_iter()
+        .filter_map(|v| base.original_vertex.iter().position(|&o| o == v))
+        .map(|b| b as u32)
+        .collect()
 }
 
 /// The input mouth loop's corners (its extreme vertices in the rig's canonical ±x, the

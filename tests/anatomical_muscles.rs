@@ -267,13 +267,11 @@ fn zygomaticus_ict_13k_right() {
     zygomaticus_moves_its_corner(3, MuscleKind::ZygomaticusMajorR, 0.8);
 }
 
-/// Known gap: Lee Perry-Smith: the corners move 9.8 mm at 46° (left) and 9.0 mm at 52°
-/// (right), but only 77 % and 71 % of the largest motion (12.6 mm, on the lower lip about 5 mm
-/// medial of the corner: the force-driven zygomaticus drags the lip along the teeth). Which side
-/// falls shorter depends on the simplified copy (before it was made independent of the vertex
-/// order, the left was at 74 % and the right passed).
+/// Lee Perry-Smith: both corners move 12.6 mm, the largest motion on the face. Regression: its
+/// simplified copy collapsed the corner vertices along the mouth loop, and they moved 9.8 mm at
+/// 46° and 9.0 mm at 52° (77 % and 71 %) with the largest motion on the lower lip 5 mm medial;
+/// the copy now keeps the input corners it holds (`pipeline::kept_mouth_corners`).
 #[test]
-#[ignore = "known gap: Lee Perry-Smith's corners 71-77 % of the largest motion (see the issue note)"]
 fn zygomaticus_lee_perry_smith_share() {
     zygomaticus_moves_its_corner(2, MuscleKind::ZygomaticusMajorL, 0.8);
     zygomaticus_moves_its_corner(2, MuscleKind::ZygomaticusMajorR, 0.8);
@@ -707,12 +705,13 @@ fn mediapipe_and_its_subdivided_copy_raise_the_brows_alike() {
 }
 
 /// Resolution independence (issue 10) at the mouth corners, MediaPipe against its subdivided
-/// copy. Known gap: 13.7 / 8.0 mm (45 %). The elastic solve is not the cause: the subdivided
-/// face simulated whole (`cargo run --release --example muscle_probe -- sub.obj
-/// --max-triangles 4000`, 78 s) moves its corners 13.7 mm; its 1 500-triangle copy drops the
-/// rolled-in corner vertex and carries it over from a zig-zag margin.
+/// copy. Known gap: 13.7 / 9.6 mm (34 %; 8.0 mm, 45 %, before the copy kept the corner
+/// vertices). The elastic solve is not the cause: the subdivided face simulated whole (`cargo
+/// run --release --example muscle_probe -- sub.obj --max-triangles 4000`, 78 s) moves its
+/// corners 13.7 mm; its 1 500-triangle copy now keeps the corner vertex, but the margin beside
+/// it is coarser than MediaPipe's own.
 #[test]
-#[ignore = "known gap: MediaPipe's subdivided copy moves its corners 8.0 mm against 13.7 (see the issue note)"]
+#[ignore = "known gap: MediaPipe's subdivided copy moves its corners 9.6 mm against 13.7 (see the issue note)"]
 fn mediapipe_and_its_subdivided_copy_agree_at_the_corners() {
     let base = model(0);
     let (fine, fine_lm) = mediapipe_subdivided();

@@ -799,7 +799,9 @@ fn a_rig_with_intersecting_shell_elements_is_flagged() {
     params.large_face.normal_weight = 0.0;
     params.large_face.border_spacing = 0.0;
     harness.get_by_label("Rebuild rig").click();
-    harness.run();
+    // One frame, not `run()`: the job repaints while it works, so `run()` could exceed its
+    // step limit (it did once, "would have settled after 6 steps"); `wait_idle` steps it out.
+    harness.step();
     common::wait_idle(&mut harness);
     let model = harness.state().model().expect("rig computed").clone();
     let crossings = model.report.shell_self_intersections;
