@@ -3,7 +3,7 @@
 //! brows' motion, the contour's motion, flipped triangles, and the mouth width change.
 //!
 //! ```text
-//! cargo run --release --example muscle_probe [-- face.obj ...] [-- --only id,id] [-- --max-triangles N] [-- --offset F]
+//! cargo run --release --example muscle_probe [-- face.obj ...] [-- --only id,id] [-- --max-triangles N] [-- --offset F] [-- --taper F]
 //! ```
 
 use std::path::{Path, PathBuf};
@@ -29,6 +29,11 @@ fn main() -> anyhow::Result<()> {
     if let Some(w) = args.windows(2).find(|w| w[0] == "--offset") {
         params.rig.offset = w[1].parse()?;
         params.rig.thickness = params.rig.offset;
+    }
+    // Distance from the eye and mouth contours over which the back face's offset grows from 0
+    // (knife edge) to its full value, fraction of the face size (0.05 by default).
+    if let Some(w) = args.windows(2).find(|w| w[0] == "--taper") {
+        params.rig.taper = w[1].parse()?;
     }
     let mut faces: Vec<PathBuf> = args
         .iter()

@@ -40,6 +40,7 @@ mod pipeline;
 pub mod presets;
 pub mod rolled_in;
 mod solve;
+pub mod untangle;
 
 pub use atomic_write::{OutputPathError, WriteError, check_output, write_atomic};
 pub use basis::{MuscleBasis, PoseError};

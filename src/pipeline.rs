@@ -417,6 +417,12 @@ pub fn build_face_model(
         }
     };
     let muscle_ids: Vec<String> = rig.muscles.iter().map(muscle_id).collect();
+    if rig.params.muscle_model == face_prep::muscle_model::MuscleModel::Anatomical {
+        let fixed = untangle_fixed(mesh, &rig);
+        for field in &mut displacements {
+            crate::untangle::relax_inversions(&mesh.vertices, &mesh.triangles, field, &fixed);
+        }
+    }
     crate::lid_closure::keep_squints_open(&rig, mesh, &muscle_ids, &mut displacements);
     crate::lid_closure::close_blinks(
         &rig,
@@ -498,6 +504,40 @@ fn check_cancel(control: &Control) -> Result<(), PipelineError> {
     } else {
         Ok(())
     }
+}
+
+/// Vertices [`crate::untangle::relax_inversions`] leaves as solved: everything farther than
+/// [`crate::untangle::LIPS_MM`] from the mouth loop (a turned triangle there is a defect to
+/// see, not a lip folding), the outer contour, the eye loops and the mouth corners.
+fn untangle_fixed(mesh: &FaceMesh, rig: &FaceRig) -> Vec<bool> {
+    let mut fixed = vec![true; mesh.vertices.len()];
+    let Some((loops, canonical)) = crate::measure::canonical_loops(rig, mesh) else {
+        return fixed;
+    };
+    let mouth: Vec<glam::DVec2> = loops
+        .mouth
+        .iter()
+        .filter_map(|&v| canonical.get(v as usize).map(|p| p.truncate()))
+        .collect();
+    let reach = crate::untangle::LIPS_MM / rig.mm_per_unit();
+    for (f, p) in fixed.iter_mut().zip(&canonical) {
+        *f = face_prep::muscle_model::distance_to_loop(p.truncate(), &mouth) > reach;
+    }
+    let corners = crate::measure::mouth_corners(&canonical, &loops.mouth)
+        .map(|(l, r)| vec![l, r])
+        .unwrap_or_default();
+    for &v in loops
+        .face
+        .iter()
+        .chain(&loops.eye_l)
+        .chain(&loops.eye_r)
+        .chain(&corners)
+    {
+        if let Some(f) = fixed.get_mut(v as usize) {
+            *f = true;
+        }
+    }
+    fixed
 }
 
 /// The input mouth loop's corners (its extreme vertices in the canonical ±x, the landmarks
