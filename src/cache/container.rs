@@ -30,8 +30,9 @@ pub const MAGIC: [u8; 8] = *b"FACEBEM\x1a";
 /// [`crate::face_simplify`]; 14: squints that keep the lids from crossing,
 /// `lid_closure::keep_squints_open`; 15: the input mouth corners a copy does not hold follow
 /// its margin instead of hanging between the lips; 16: a large face's copy keeps the input
-/// mouth corners it holds and resamples the mouth loop from them).
-pub const FORMAT_VERSION: u32 = 16;
+/// mouth corners it holds and resamples the mouth loop from them; 17: the lips relaxed where a
+/// response would turn them over, [`crate::untangle`]).
+pub const FORMAT_VERSION: u32 = 17;
 /// Size of the fixed header in bytes.
 pub const HEADER_LEN: usize = 8 + 4 + 32 + 32 + 8 + 32;
 
