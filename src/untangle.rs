@@ -10,7 +10,7 @@
 //! or [`MAX_ROUNDS`] have passed. The pipeline relaxes only the lips (within [`LIPS_MM`] of
 //! the mouth loop) and keeps landmarks and margins that other passes or the user rely on exactly
 //! as solved: the outer contour (on the fixed rim), the eye loops (closed exactly by
-//! [`crate::lid_closure`]) and the mouth corners.
+//! the pipeline's lid closure) and the mouth corners.
 
 use glam::DVec3;
 
