@@ -542,9 +542,9 @@ fn untangle_fixed(mesh: &FaceMesh, rig: &FaceRig) -> Vec<bool> {
 
 /// The input mouth loop's corners (its extreme vertices in the canonical ±x, the landmarks
 /// [`crate::measure::FaceLandmarks`] measures) that the reduced copy `base` holds, as indices
-/// into `base`: a large face's simplification keeps them. Regression: MediaPipe subdivided 1 →
-/// 4 lost its left corner in the 1500-triangle copy and moved it 8.0 mm at full zygomaticus
-/// where the face itself moves it 13.7.
+/// into `base`: a large face's simplification keeps them. Regression: Lee Perry-Smith's copy
+/// collapsed its corners along the mouth loop, and they moved 9.8 / 9.0 mm at full zygomaticus
+/// against 12.6 mm beside them (now 12.6 / 12.6 mm; `tests/face_simplify.rs`).
 fn kept_mouth_corners(mesh: &FaceMesh, base: &Simplified) -> Vec<u32> {
     let Ok(loops) = face_prep::topology::validate(&mesh.vertices, &mesh.triangles) else {
         return Vec::new();
