@@ -5,7 +5,7 @@
 //! cargo run --release --example calibrate [-- --thesis] [-- face.obj ...]
 //! ```
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use face_prep::muscle_model::MuscleModel;
 use facebem::measure::{
@@ -18,17 +18,8 @@ fn main() -> anyhow::Result<()> {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let args: Vec<String> = std::env::args().skip(1).collect();
     let thesis = args.iter().any(|a| a == "--thesis");
-    let mut faces: Vec<PathBuf> = args
-        .iter()
-        .filter(|a| !a.starts_with("--"))
-        .map(PathBuf::from)
-        .collect();
-    if faces.is_empty() {
-        faces = facebem::open::BUNDLED_FACES
-            .iter()
-            .map(|f| root.join("assets").join(f))
-            .collect();
-    }
+    let faces =
+        facebem::open::faces_from_args(&args, &root.join("assets"), &facebem::open::BUNDLED_FACES);
     let mut params = PipelineParams::default();
     if thesis {
         params.rig.muscle_model = MuscleModel::Thesis;

@@ -11,7 +11,7 @@
 //! ```
 
 use std::collections::HashSet;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use facebem::measure::{FaceLandmarks, flipped_by};
 use facebem::{Control, PipelineParams, build_face_model, presets};
@@ -28,17 +28,8 @@ fn main() -> anyhow::Result<()> {
         .find(|w| w[0] == "--only")
         .map(|w| w[1].clone());
     let all = args.iter().any(|a| a == "--all");
-    let mut faces: Vec<PathBuf> = args
-        .iter()
-        .filter(|a| a.ends_with(".obj"))
-        .map(PathBuf::from)
-        .collect();
-    if faces.is_empty() {
-        faces = facebem::open::BUNDLED_FACES
-            .iter()
-            .map(|f| root.join("assets").join(f))
-            .collect();
-    }
+    let faces =
+        facebem::open::faces_from_args(&args, &root.join("assets"), &facebem::open::BUNDLED_FACES);
     for face in &faces {
         let mesh = face_prep::load_face(face)?;
         let m = build_face_model(&mesh, &PipelineParams::default(), &Control::new())?;

@@ -6,7 +6,7 @@
 //! cargo run --release --example muscle_probe [-- face.obj ...] [-- --only id,id] [-- --max-triangles N] [-- --offset F] [-- --taper F]
 //! ```
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use facebem::measure::{FaceLandmarks, flipped_triangles};
 use facebem::{Control, PipelineParams, build_face_model};
@@ -35,14 +35,11 @@ fn main() -> anyhow::Result<()> {
     if let Some(w) = args.windows(2).find(|w| w[0] == "--taper") {
         params.rig.taper = w[1].parse()?;
     }
-    let mut faces: Vec<PathBuf> = args
-        .iter()
-        .filter(|a| a.ends_with(".obj"))
-        .map(PathBuf::from)
-        .collect();
-    if faces.is_empty() {
-        faces = vec![root.join("assets").join(facebem::open::DEFAULT_FACE_NAME)];
-    }
+    let faces = facebem::open::faces_from_args(
+        &args,
+        &root.join("assets"),
+        &[facebem::open::DEFAULT_FACE_NAME],
+    );
     for face in &faces {
         let mesh = face_prep::load_face(face)?;
         let t = std::time::Instant::now();

@@ -26,6 +26,31 @@ pub const BUNDLED_FACES: [&str; 4] = [
     "ict_narrow_face_4loop.obj",
 ];
 
+/// The faces a measuring tool runs on: the face files among `args` (those ending in `.obj`), or,
+/// when there are none, `default_faces` under `assets_dir`.
+///
+/// ```
+/// use std::path::{Path, PathBuf};
+/// use facebem::open::{BUNDLED_FACES, faces_from_args};
+/// let args = ["--only".to_owned(), "happy".to_owned(), "me.obj".to_owned()];
+/// assert_eq!(faces_from_args(&args, Path::new("assets"), &BUNDLED_FACES), vec![PathBuf::from("me.obj")]);
+/// let bundled = faces_from_args(&[], Path::new("assets"), &BUNDLED_FACES);
+/// assert_eq!(bundled.len(), 4);
+/// assert_eq!(bundled[0], Path::new("assets").join(BUNDLED_FACES[0]));
+/// ```
+pub fn faces_from_args(args: &[String], assets_dir: &Path, default_faces: &[&str]) -> Vec<PathBuf> {
+    let given: Vec<PathBuf> = args
+        .iter()
+        .filter(|a| a.ends_with(".obj"))
+        .map(PathBuf::from)
+        .collect();
+    if given.is_empty() {
+        default_faces.iter().map(|f| assets_dir.join(f)).collect()
+    } else {
+        given
+    }
+}
+
 /// OBJ text of the bundled default face, compiled into the library.
 pub const DEFAULT_FACE_OBJ: &str = include_str!("../assets/mediapipe_canonical_4loop.obj");
 
