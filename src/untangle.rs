@@ -75,21 +75,16 @@ pub fn relax_inversions(
     fixed: &[bool],
 ) -> usize {
     let n = neutral.len().min(field.len());
-    let mut neighbours: Vec<Vec<u32>> = vec![Vec::new(); n];
-    for t in triangles {
-        if t.iter().any(|&i| i as usize >= n) {
-            continue;
-        }
-        for k in 0..3 {
-            let (a, b) = (t[k], t[(k + 1) % 3]);
-            neighbours[a as usize].push(b);
-            neighbours[b as usize].push(a);
-        }
+    // Most responses turn nothing over: no adjacency to build for them.
+    if turned_over(neutral, triangles, field).is_empty() {
+        return 0;
     }
-    for nb in &mut neighbours {
-        nb.sort_unstable();
-        nb.dedup();
-    }
+    let in_range: Vec<[u32; 3]> = triangles
+        .iter()
+        .copied()
+        .filter(|t| t.iter().all(|&i| (i as usize) < n))
+        .collect();
+    let neighbours = face_prep::shell::vertex_adjacency(n, &in_range);
     let is_fixed = |v: usize| fixed.get(v).copied().unwrap_or(false);
     let mut moved = vec![false; n];
     for _ in 0..MAX_ROUNDS {
