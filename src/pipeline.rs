@@ -3,7 +3,7 @@
 
 use std::time::Instant;
 
-use face_prep::{FaceMesh, FaceRig, RigParams};
+use face_prep::{FaceLoops, FaceMesh, FaceRig, RigParams};
 use glam::{DMat3, DVec3};
 use serde::{Deserialize, Serialize};
 
@@ -431,6 +431,14 @@ pub fn build_face_model(
         &muscle_ids,
         &mut displacements,
     );
+    if rig.params.muscle_model == face_prep::muscle_model::MuscleModel::Anatomical
+        && let Some(s) = &simplified
+    {
+        let fixed = carried_fixed(mesh, &rig, &s.mesh);
+        for field in &mut displacements {
+            crate::untangle::relax_inversions(&mesh.vertices, &mesh.triangles, field, &fixed);
+        }
+    }
     control.report(Stage::Transfer, 1, 1);
     let basis = MuscleBasis {
         muscle_ids,
@@ -523,7 +531,14 @@ fn untangle_fixed(mesh: &FaceMesh, rig: &FaceRig) -> Vec<bool> {
     for (f, p) in fixed.iter_mut().zip(&canonical) {
         *f = face_prep::muscle_model::distance_to_loop(p.truncate(), &mouth) > reach;
     }
-    let corners = crate::measure::mouth_corners(&canonical, &loops.mouth)
+    fix_contours_and_corners(&mut fixed, &loops, &canonical);
+    fixed
+}
+
+/// Flags the outer contour, the eye loops and the mouth corners (`canonical`: the mesh's
+/// vertices in the rig's canonical frame) as fixed for the relaxation passes.
+fn fix_contours_and_corners(fixed: &mut [bool], loops: &FaceLoops, canonical: &[DVec3]) {
+    let corners = crate::measure::mouth_corners(canonical, &loops.mouth)
         .map(|(l, r)| vec![l, r])
         .unwrap_or_default();
     for &v in loops
@@ -537,6 +552,46 @@ fn untangle_fixed(mesh: &FaceMesh, rig: &FaceRig) -> Vec<bool> {
             *f = true;
         }
     }
+}
+
+/// Vertices a second [`crate::untangle::relax_inversions`] pass leaves alone: every vertex the
+/// simulated copy `copy` holds (their motion is the solve's), every vertex farther than
+/// [`crate::untangle::LIPS_MM`] from the mouth loop and [`crate::untangle::LIDS_MM`] from the
+/// eye loops, the outer contour, the eye loops (closed exactly by the lid closure) and the
+/// mouth corners. The rest were carried over from the copy ([`Transfer`]); where the copy is
+/// coarser than the input (a lid crease, a canthus, the commissure), neighbours of such a fold
+/// project onto different copy triangles and their order can reverse. Relaxing them changes
+/// no simulated value. (Relaxing carried vertices on the forehead too moved ICT 2500's left
+/// brow point 1.9 mm less than its right one under the frontalis.)
+fn carried_fixed(mesh: &FaceMesh, rig: &FaceRig, copy: &Simplified) -> Vec<bool> {
+    let Some((loops, canonical)) = crate::measure::canonical_loops(rig, mesh) else {
+        return vec![true; mesh.vertices.len()];
+    };
+    let polyline = |lp: &[u32]| -> Vec<glam::DVec2> {
+        lp.iter()
+            .filter_map(|&v| canonical.get(v as usize).map(|p| p.truncate()))
+            .collect()
+    };
+    let (mouth, eye_l, eye_r) = (
+        polyline(&loops.mouth),
+        polyline(&loops.eye_l),
+        polyline(&loops.eye_r),
+    );
+    let lips = crate::untangle::LIPS_MM / rig.mm_per_unit();
+    let lids = crate::untangle::LIDS_MM / rig.mm_per_unit();
+    let near = |p: glam::DVec2| {
+        use face_prep::muscle_model::distance_to_loop;
+        distance_to_loop(p, &mouth) <= lips
+            || distance_to_loop(p, &eye_l) <= lids
+            || distance_to_loop(p, &eye_r) <= lids
+    };
+    let mut fixed: Vec<bool> = canonical.iter().map(|p| !near(p.truncate())).collect();
+    for &v in &copy.original_vertex {
+        if let Some(f) = fixed.get_mut(v as usize) {
+            *f = true;
+        }
+    }
+    fix_contours_and_corners(&mut fixed, &loops, &canonical);
     fixed
 }
 

@@ -362,3 +362,64 @@ fn ict_captured_expressions_cosine_table() {
         }
     }
 }
+
+/// Issue 11's flip limit: every ARKit and VRM name a face's rig makes, at full weight, turns at
+/// most 0.5 % of the front triangles over. Held on MediaPipe, Lee Perry-Smith and ICT 13k; the
+/// known gaps left (`cargo run --release --example named_expressions`) are listed with their
+/// measured counts and held to them, so a regression shows. Regression: ICT 13k's `blink` (both
+/// eyes) turned 86 of 13 120 triangles (0.66 %) before the vertices its simplified copy does
+/// not hold were relaxed after the lid closure (now 49), and its `jawForward` 142.
+fn named_targets_flip_at_most_half_a_percent(face: usize, known_gaps: &[(&str, usize)]) {
+    let m = model(face);
+    let limit = (0.005 * m.mesh.triangles.len() as f64).floor() as usize;
+    let mut over = Vec::new();
+    for e in arkit::EXPRESSIONS.iter().chain(&vrm::EXPRESSIONS) {
+        let Some(r) = e.resolve(m.muscle_ids()) else {
+            continue;
+        };
+        let posed = m.pose(&r.sliders).unwrap();
+        let flips =
+            facebem::measure::flipped_triangles(&m.mesh.vertices, &posed, &m.mesh.triangles).len();
+        let allowed = known_gaps
+            .iter()
+            .find(|(name, _)| *name == e.name)
+            .map_or(limit, |&(_, n)| n);
+        println!(
+            "{} {}: {flips} flips (allowed {allowed})",
+            support::FACES[face],
+            e.name
+        );
+        if flips > allowed {
+            over.push(format!("{} {flips}", e.name));
+        }
+    }
+    assert!(
+        over.is_empty(),
+        "{}: over {limit} flipped triangles: {over:?}",
+        support::FACES[face]
+    );
+}
+
+#[test]
+fn named_targets_flip_at_most_half_a_percent_mediapipe() {
+    named_targets_flip_at_most_half_a_percent(0, &[]);
+}
+
+#[test]
+fn named_targets_flip_at_most_half_a_percent_lee_perry_smith() {
+    named_targets_flip_at_most_half_a_percent(2, &[]);
+}
+
+/// Known gap: `jawForward` turns 81 triangles over (0.62 %; 142 before), at the mouth corners
+/// where the upper lip's underside meets the lower lip.
+#[test]
+fn named_targets_flip_at_most_half_a_percent_ict_13k() {
+    named_targets_flip_at_most_half_a_percent(3, &[("jawForward", 81)]);
+}
+
+/// Known gaps: `mouthPucker` turns 17 triangles over (0.68 %; 21 before), `blink` 19 (0.76 %,
+/// both eyes; each eye alone 10 and 9), on triangles whose corners the simplified copy holds.
+#[test]
+fn named_targets_flip_at_most_half_a_percent_ict_2500() {
+    named_targets_flip_at_most_half_a_percent(1, &[("mouthPucker", 17), ("blink", 19)]);
+}

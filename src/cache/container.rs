@@ -31,8 +31,10 @@ pub const MAGIC: [u8; 8] = *b"FACEBEM\x1a";
 /// `lid_closure::keep_squints_open`; 15: the input mouth corners a copy does not hold follow
 /// its margin instead of hanging between the lips; 16: a large face's copy keeps the input
 /// mouth corners it holds and resamples the mouth loop from them; 17: the lips relaxed where a
-/// response would turn them over, [`crate::untangle`]).
-pub const FORMAT_VERSION: u32 = 17;
+/// response would turn them over, [`crate::untangle`]; 18: turned triangles evened out
+/// ([`crate::untangle::flatten_turned`]) and a large face's carried-over vertices relaxed
+/// after the lid closure).
+pub const FORMAT_VERSION: u32 = 18;
 /// Size of the fixed header in bytes.
 pub const HEADER_LEN: usize = 8 + 4 + 32 + 32 + 8 + 32;
 
