@@ -431,10 +431,8 @@ pub fn build_face_model(
         &muscle_ids,
         &mut displacements,
     );
-    if rig.params.muscle_model == face_prep::muscle_model::MuscleModel::Anatomical
-        && let Some(s) = &simplified
-    {
-        let fixed = carried_fixed(mesh, &rig, &s.mesh);
+    if rig.params.muscle_model == face_prep::muscle_model::MuscleModel::Anatomical {
+        let fixed = closed_lids_fixed(mesh, &rig, simplified.as_ref().map(|s| &s.mesh));
         for field in &mut displacements {
             crate::untangle::relax_inversions(&mesh.vertices, &mesh.triangles, field, &fixed);
         }
@@ -554,16 +552,16 @@ fn fix_contours_and_corners(fixed: &mut [bool], loops: &FaceLoops, canonical: &[
     }
 }
 
-/// Vertices a second [`crate::untangle::relax_inversions`] pass leaves alone: every vertex the
-/// simulated copy `copy` holds (their motion is the solve's), every vertex farther than
-/// [`crate::untangle::LIPS_MM`] from the mouth loop and [`crate::untangle::LIDS_MM`] from the
-/// eye loops, the outer contour, the eye loops (closed exactly by the lid closure) and the
-/// mouth corners. The rest were carried over from the copy ([`Transfer`]); where the copy is
-/// coarser than the input (a lid crease, a canthus, the commissure), neighbours of such a fold
-/// project onto different copy triangles and their order can reverse. Relaxing them changes
-/// no simulated value. (Relaxing carried vertices on the forehead too moved ICT 2500's left
-/// brow point 1.9 mm less than its right one under the frontalis.)
-fn carried_fixed(mesh: &FaceMesh, rig: &FaceRig, copy: &Simplified) -> Vec<bool> {
+/// Vertices the second [`crate::untangle::relax_inversions`] pass, after the lid closure,
+/// leaves alone. It relaxes the lids (within [`crate::untangle::LIDS_MM`] of the eye loops),
+/// which the closure changed after the first pass, and, on a face simulated on a reduced
+/// `copy`, the vertices the copy does not hold within [`crate::untangle::LIPS_MM`] of the
+/// mouth loop: their motion is interpolated from the copy, whose coarser triangles fold
+/// differently from the input's at a commissure, and relaxing them changes no simulated value.
+/// The outer contour, the eye loops (closed exactly) and the mouth corners stay. Relaxing the
+/// carried-over vertices of the whole face instead moved ICT 2500's left brow point 1.9 mm less
+/// than its right one under the frontalis.
+fn closed_lids_fixed(mesh: &FaceMesh, rig: &FaceRig, copy: Option<&Simplified>) -> Vec<bool> {
     let Some((loops, canonical)) = crate::measure::canonical_loops(rig, mesh) else {
         return vec![true; mesh.vertices.len()];
     };
@@ -579,18 +577,24 @@ fn carried_fixed(mesh: &FaceMesh, rig: &FaceRig, copy: &Simplified) -> Vec<bool>
     );
     let lips = crate::untangle::LIPS_MM / rig.mm_per_unit();
     let lids = crate::untangle::LIDS_MM / rig.mm_per_unit();
-    let near = |p: glam::DVec2| {
-        use face_prep::muscle_model::distance_to_loop;
-        distance_to_loop(p, &mouth) <= lips
-            || distance_to_loop(p, &eye_l) <= lids
-            || distance_to_loop(p, &eye_r) <= lids
-    };
-    let mut fixed: Vec<bool> = canonical.iter().map(|p| !near(p.truncate())).collect();
-    for &v in &copy.original_vertex {
-        if let Some(f) = fixed.get_mut(v as usize) {
-            *f = true;
+    let mut simulated = vec![copy.is_none(); mesh.vertices.len()];
+    for &v in copy.map_or(&[][..], |c| &c.original_vertex) {
+        if let Some(s) = simulated.get_mut(v as usize) {
+            *s = true;
         }
     }
+    let mut fixed: Vec<bool> = canonical
+        .iter()
+        .zip(&simulated)
+        .map(|(p, &simulated)| {
+            use face_prep::muscle_model::distance_to_loop;
+            let p = p.truncate();
+            let at_lids =
+                distance_to_loop(p, &eye_l) <= lids || distance_to_loop(p, &eye_r) <= lids;
+            let at_lips = !simulated && distance_to_loop(p, &mouth) <= lips;
+            !(at_lids || at_lips)
+        })
+        .collect();
     fix_contours_and_corners(&mut fixed, &loops, &canonical);
     fixed
 }

@@ -367,8 +367,8 @@ fn ict_captured_expressions_cosine_table() {
 /// most 0.5 % of the front triangles over. Held on MediaPipe, Lee Perry-Smith and ICT 13k; the
 /// known gaps left (`cargo run --release --example named_expressions`) are listed with their
 /// measured counts and held to them, so a regression shows. Regression: ICT 13k's `blink` (both
-/// eyes) turned 86 of 13 120 triangles (0.66 %) before the vertices its simplified copy does
-/// not hold were relaxed after the lid closure (now 49), and its `jawForward` 142.
+/// eyes) turned 86 of 13 120 triangles (0.66 %) before the lids were relaxed after the lid
+/// closure (now 50), and its `jawForward` 142.
 fn named_targets_flip_at_most_half_a_percent(face: usize, known_gaps: &[(&str, usize)]) {
     let m = model(face);
     let limit = (0.005 * m.mesh.triangles.len() as f64).floor() as usize;
@@ -417,9 +417,10 @@ fn named_targets_flip_at_most_half_a_percent_ict_13k() {
     named_targets_flip_at_most_half_a_percent(3, &[("jawForward", 81)]);
 }
 
-/// Known gaps: `mouthPucker` turns 17 triangles over (0.68 %; 21 before), `blink` 19 (0.76 %,
-/// both eyes; each eye alone 10 and 9), on triangles whose corners the simplified copy holds.
+/// Known gap: `mouthPucker` turns 17 triangles over (0.68 %; 21 before), the sum of the two
+/// halves of the sphincter, each relaxed on its own. Regression: `blink` turned 19 (0.76 %)
+/// before the lids were relaxed after the lid closure (now 8).
 #[test]
 fn named_targets_flip_at_most_half_a_percent_ict_2500() {
-    named_targets_flip_at_most_half_a_percent(1, &[("mouthPucker", 17), ("blink", 19)]);
+    named_targets_flip_at_most_half_a_percent(1, &[("mouthPucker", 17)]);
 }
