@@ -32,9 +32,9 @@ pub const MAGIC: [u8; 8] = *b"FACEBEM\x1a";
 /// its margin instead of hanging between the lips; 16: a large face's copy keeps the input
 /// mouth corners it holds and resamples the mouth loop from them; 17: the lips relaxed where a
 /// response would turn them over, [`crate::untangle`]; 18: turned triangles evened out
-/// ([`crate::untangle::flatten_turned`]) and a large face's carried-over vertices relaxed
-/// after the lid closure).
-pub const FORMAT_VERSION: u32 = 18;
+/// ([`crate::untangle::relax_inversions`]' second stage) and a large face's carried-over
+/// vertices relaxed after the lid closure; 19: the lids relaxed after the lid closure).
+pub const FORMAT_VERSION: u32 = 19;
 /// Size of the fixed header in bytes.
 pub const HEADER_LEN: usize = 8 + 4 + 32 + 32 + 8 + 32;
 
