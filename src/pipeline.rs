@@ -418,10 +418,7 @@ pub fn build_face_model(
     };
     let muscle_ids: Vec<String> = rig.muscles.iter().map(muscle_id).collect();
     if rig.params.muscle_model == face_prep::muscle_model::MuscleModel::Anatomical {
-        let fixed = untangle_fixed(mesh, &rig);
-        for field in &mut displacements {
-            crate::untangle::relax_inversions(&mesh.vertices, &mesh.triangles, field, &fixed);
-        }
+        relax_each(mesh, &rig, &untangle_fixed(mesh, &rig), &mut displacements);
     }
     crate::lid_closure::keep_squints_open(&rig, mesh, &muscle_ids, &mut displacements);
     crate::lid_closure::close_blinks(
@@ -433,9 +430,16 @@ pub fn build_face_model(
     );
     if rig.params.muscle_model == face_prep::muscle_model::MuscleModel::Anatomical {
         let fixed = closed_lids_fixed(mesh, &rig, simplified.as_ref().map(|s| &s.mesh));
-        for field in &mut displacements {
-            crate::untangle::relax_inversions(&mesh.vertices, &mesh.triangles, field, &fixed);
-        }
+        relax_each(mesh, &rig, &fixed, &mut displacements);
+    }
+    if rig.params.muscle_model == face_prep::muscle_model::MuscleModel::Anatomical {
+        relax_sphincter_sum(
+            mesh,
+            &rig,
+            &muscle_ids,
+            simplified.as_ref(),
+            &mut displacements,
+        );
     }
     control.report(Stage::Transfer, 1, 1);
     let basis = MuscleBasis {
@@ -496,6 +500,45 @@ pub fn build_face_model(
         params: params.clone(),
         report,
     })
+}
+
+/// Relaxes every response where it turns triangles over, moving only the vertices not in
+/// `fixed` ([`crate::untangle::relax_inversions`], patches of [`crate::untangle::PATCH_MM`]).
+fn relax_each(mesh: &FaceMesh, rig: &FaceRig, fixed: &[bool], displacements: &mut [Vec<DVec3>]) {
+    let patch_radius = crate::untangle::PATCH_MM / rig.mm_per_unit();
+    for field in displacements {
+        crate::untangle::relax_inversions(
+            &mesh.vertices,
+            &mesh.triangles,
+            field,
+            fixed,
+            patch_radius,
+        );
+    }
+}
+
+/// `mouthPucker` contracts both halves of the mouth's sphincter at once: their sum is relaxed
+/// as one field ([`crate::untangle::relax_sum`]), with the lips and lids free as in the second
+/// pass (ICT 2500: 17 turned triangles → 11).
+fn relax_sphincter_sum(
+    mesh: &FaceMesh,
+    rig: &FaceRig,
+    muscle_ids: &[String],
+    simplified: Option<&SimplifiedFace>,
+    displacements: &mut [Vec<DVec3>],
+) {
+    let find = |kind: face_prep::MuscleKind| muscle_ids.iter().position(|id| id == kind.id());
+    let (Some(upper), Some(lower)) = (
+        find(face_prep::MuscleKind::OrbicularisOrisUpper),
+        find(face_prep::MuscleKind::OrbicularisOrisLower),
+    ) else {
+        return;
+    };
+    let fixed = closed_lids_fixed(mesh, rig, simplified.map(|s| &s.mesh));
+    let patch_radius = crate::untangle::PATCH_MM / rig.mm_per_unit();
+    let (first, second) = displacements.split_at_mut(upper.max(lower));
+    let (a, b) = (&mut first[upper.min(lower)], &mut second[0]);
+    crate::untangle::relax_sum(&mesh.vertices, &mesh.triangles, a, b, &fixed, patch_radius);
 }
 
 /// Identifier of a muscle: its standard id when it is one of the ten, else its name.

@@ -15,12 +15,15 @@
 //! Where a field is already smooth and a thin fold still turns over (the upper lip's
 //! underside at a mouth corner when the jaw moves forward), a second stage evens out the
 //! turned triangles one at a time, keeping each change only if it turns fewer triangles
-//! around it over. After the lid closure the pipeline runs both once more at the lids (within
+//! around it over; a third smooths what is still turned over a patch [`PATCH_MM`] around it
+//! (ICT 13k's jawForward: 81 turned triangles → 38). After the lid closure the pipeline runs
+//! all three once more at the lids (within
 //! [`LIDS_MM`] of the eye loops), and, on a face simulated on a reduced copy, on the vertices
 //! the copy does not hold at the lips: their motion is interpolated from the copy, whose
 //! coarser triangles fold differently from the input's at a commissure, and relaxing them
 //! changes no simulated value (ICT 13k's blinks: 42 / 43 turned triangles → 25 / 25; ICT
-//! 2500's 10 / 9 → 5 / 3).
+//! 2500's 10 / 9 → 5 / 3). [`relax_sum`] relaxes two controls that one named expression
+//! contracts together as their sum (the sphincter's halves in `mouthPucker`).
 
 use glam::DVec3;
 
@@ -81,7 +84,7 @@ pub fn turned_over(neutral: &[DVec3], triangles: &[[u32; 3]], field: &[DVec3]) -
 /// f[4] = DVec3::new(-3.0, 0.0, 0.0);
 /// let fixed = [true, true, true, true, false];
 /// assert_eq!(facebem::untangle::turned_over(&v, &t, &f), vec![1]);
-/// assert_eq!(facebem::untangle::relax_inversions(&v, &t, &mut f, &fixed), 1);
+/// assert_eq!(facebem::untangle::relax_inversions(&v, &t, &mut f, &fixed, 0.0), 1);
 /// assert!(facebem::untangle::turned_over(&v, &t, &f).is_empty());
 /// assert_eq!(f[4], DVec3::ZERO);
 /// ```
@@ -90,6 +93,7 @@ pub fn relax_inversions(
     triangles: &[[u32; 3]],
     field: &mut [DVec3],
     fixed: &[bool],
+    patch_radius: f64,
 ) -> usize {
     let n = neutral.len().min(field.len());
     // Most responses turn nothing over: no adjacency to build for them.
@@ -138,7 +142,71 @@ pub fn relax_inversions(
         }
     }
     flatten_turned(neutral, triangles, field, &is_fixed, &mut moved);
+    smooth_patches(
+        neutral,
+        triangles,
+        field,
+        &neighbours,
+        &is_fixed,
+        patch_radius,
+        &mut moved,
+    );
     moved.iter().filter(|&&m| m).count()
+}
+
+/// Relaxes the sum of two controls' fields that a named expression uses together at full
+/// weight (the two halves of the mouth's sphincter in `mouthPucker`): each is relaxed on its
+/// own, yet their sum can turn triangles over that neither turns alone. The sum is relaxed
+/// like one field and each of the two takes half of the change; kept only if neither field alone then turns more triangles over than
+/// before. Returns whether it was kept.
+///
+/// ```
+/// use glam::DVec3;
+/// // Two halves of a centre vertex's motion: each alone stays inside the fan, their sum
+/// // (−3 along x) carries it past the rim.
+/// let v = [DVec3::new(-1.0, -1.0, 0.0), DVec3::new(1.0, -1.0, 0.0), DVec3::new(1.0, 1.0, 0.0),
+///          DVec3::new(-1.0, 1.0, 0.0), DVec3::ZERO];
+/// let t = [[0, 1, 4], [1, 2, 4], [2, 3, 4], [3, 0, 4]];
+/// let mut a = vec![DVec3::ZERO; 5];
+/// a[4] = DVec3::new(-0.9, 0.0, 0.0);
+/// let mut b = a.clone();
+/// let fixed = [true, true, true, true, false];
+/// let sum = |a: &[DVec3], b: &[DVec3]| a.iter().zip(b).map(|(x, y)| *x + *y).collect::<Vec<_>>();
+/// assert_eq!(facebem::untangle::turned_over(&v, &t, &sum(&a, &b)), vec![1]);
+/// assert!(facebem::untangle::relax_sum(&v, &t, &mut a, &mut b, &fixed, 0.0));
+/// assert!(facebem::untangle::turned_over(&v, &t, &sum(&a, &b)).is_empty());
+/// ```
+pub fn relax_sum(
+    neutral: &[DVec3],
+    triangles: &[[u32; 3]],
+    a: &mut [DVec3],
+    b: &mut [DVec3],
+    fixed: &[bool],
+    patch_radius: f64,
+) -> bool {
+    let n = a.len().min(b.len());
+    let mut sum: Vec<DVec3> = a.iter().zip(b.iter()).map(|(x, y)| *x + *y).collect();
+    let before = sum.clone();
+    if relax_inversions(neutral, triangles, &mut sum, fixed, patch_radius) == 0 {
+        return false;
+    }
+    let (turned_a, turned_b) = (
+        turned_over(neutral, triangles, a).len(),
+        turned_over(neutral, triangles, b).len(),
+    );
+    // Half of the change to each: a share in proportion to each field's motion, or all of it
+    // to the field that moves more, turns the lower lip's half over where the upper's sum
+    // does not (ICT 2500's sphincter: 5 → 7 or 8 turned triangles; halved: 5).
+    let new_a: Vec<DVec3> = (0..n).map(|v| a[v] + 0.5 * (sum[v] - before[v])).collect();
+    let new_b: Vec<DVec3> = (0..n).map(|v| b[v] + 0.5 * (sum[v] - before[v])).collect();
+    if turned_over(neutral, triangles, &new_a).len() > turned_a
+        || turned_over(neutral, triangles, &new_b).len() > turned_b
+    {
+        return false;
+    }
+    a.copy_from_slice(&new_a);
+    b.copy_from_slice(&new_b);
+    true
 }
 
 /// Most rounds of [`relax_inversions`]' second stage (evening out turned triangles).
@@ -218,6 +286,135 @@ fn flatten_turned(
     }
 }
 
+/// Radius, mm, around the still-turned triangles' corners that the pipeline lets
+/// [`relax_inversions`]' third stage smooth.
+pub const PATCH_MM: f64 = 5.0;
+
+/// Jacobi sweeps of the third stage's harmonic smoothing.
+pub const PATCH_SWEEPS: usize = 400;
+
+/// The third stage of [`relax_inversions`], for folds a triangle at a time cannot even out:
+/// each connected patch of the triangles still turned, grown by [`PATCH_RINGS`] rings, takes
+/// the harmonic field (each free vertex at the mean of its neighbours) with the patch's rim
+/// as boundary, and keeps it only if fewer triangles in and around the patch are turned.
+fn smooth_patches(
+    neutral: &[DVec3],
+    triangles: &[[u32; 3]],
+    field: &mut [DVec3],
+    neighbours: &[Vec<u32>],
+    is_fixed: &dyn Fn(usize) -> bool,
+    patch_radius: f64,
+    moved: &mut [bool],
+) {
+    let n = moved.len();
+    let turned = turned_over(neutral, triangles, field);
+    if turned.is_empty() || patch_radius <= 0.0 {
+        return;
+    }
+    // The vertices within `patch_radius` of a turned triangle's corner, reached from those
+    // corners through such vertices: a set that does not depend on the vertex order.
+    let mut seeds: Vec<usize> = turned
+        .iter()
+        .flat_map(|&t| triangles[t].iter().map(|&v| v as usize))
+        .filter(|&v| v < n)
+        .collect();
+    seeds.sort_unstable();
+    seeds.dedup();
+    let near = |w: usize| {
+        seeds
+            .iter()
+            .any(|&s| (neutral[w] - neutral[s]).length() <= patch_radius)
+    };
+    let mut in_patch = vec![false; n];
+    for &v in &seeds {
+        in_patch[v] = true;
+    }
+    let mut frontier = seeds.clone();
+    while !frontier.is_empty() {
+        let mut next = Vec::new();
+        for &v in &frontier {
+            for &w in &neighbours[v] {
+                let w = w as usize;
+                if !in_patch[w] && near(w) {
+                    in_patch[w] = true;
+                    next.push(w);
+                }
+            }
+        }
+        frontier = next;
+    }
+    // Connected components of the patch.
+    let mut component = vec![usize::MAX; n];
+    let mut components: Vec<Vec<usize>> = Vec::new();
+    for start in 0..n {
+        if !in_patch[start] || component[start] != usize::MAX {
+            continue;
+        }
+        let id = components.len();
+        let mut stack = vec![start];
+        component[start] = id;
+        let mut members = Vec::new();
+        while let Some(v) = stack.pop() {
+            members.push(v);
+            for &w in &neighbours[v] {
+                let w = w as usize;
+                if in_patch[w] && component[w] == usize::MAX {
+                    component[w] = id;
+                    stack.push(w);
+                }
+            }
+        }
+        components.push(members);
+    }
+    let is_turned = |t: &[u32; 3], field: &[DVec3]| {
+        let normal = |s: f64| {
+            let [a, b, c] = t.map(|i| neutral[i as usize] + s * field[i as usize]);
+            (b - a).cross(c - a)
+        };
+        normal(0.0).dot(normal(-1.0)) <= 0.0
+    };
+    for (id, members) in components.iter().enumerate() {
+        let around: Vec<&[u32; 3]> = triangles
+            .iter()
+            .filter(|t| t.iter().all(|&v| (v as usize) < n))
+            .filter(|t| t.iter().any(|&v| component[v as usize] == id))
+            .collect();
+        let count = |field: &[DVec3]| around.iter().filter(|t| is_turned(t, field)).count();
+        let before_count = count(field);
+        if before_count == 0 {
+            continue;
+        }
+        let free: Vec<usize> = members
+            .iter()
+            .copied()
+            .filter(|&v| !is_fixed(v) && !neighbours[v].is_empty())
+            .collect();
+        let before: Vec<DVec3> = free.iter().map(|&v| field[v]).collect();
+        // Jacobi sweeps: unlike Gauss–Seidel, the result does not depend on the vertex order.
+        for _ in 0..PATCH_SWEEPS {
+            let means: Vec<DVec3> = free
+                .iter()
+                .map(|&v| {
+                    let nb = &neighbours[v];
+                    nb.iter().map(|&w| field[w as usize]).sum::<DVec3>() / nb.len() as f64
+                })
+                .collect();
+            for (&v, d) in free.iter().zip(means) {
+                field[v] = d;
+            }
+        }
+        if count(field) < before_count {
+            for &v in &free {
+                moved[v] = true;
+            }
+        } else {
+            for (&v, d) in free.iter().zip(before) {
+                field[v] = d;
+            }
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -244,7 +441,7 @@ mod tests {
         // A and B are each at the mean of their neighbours already.
         assert!(((f[0] + f[2] + f[3] + f[4]) / 4.0 - f[1]).length() < 1e-12);
         assert!(((f[0] + f[1] + f[4]) / 3.0 - f[2]).length() < 1e-12);
-        assert_eq!(relax_inversions(&v, &t, &mut f, &fixed), 2);
+        assert_eq!(relax_inversions(&v, &t, &mut f, &fixed, 0.0), 2);
         assert_eq!(turned_over(&v, &t, &f), vec![2]);
         assert!((f[1] + 2.0 / 3.0 * d).length() < 1e-12 && (f[2] + 2.0 / 3.0 * d).length() < 1e-12);
     }
