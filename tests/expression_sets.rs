@@ -364,32 +364,64 @@ fn ict_captured_expressions_cosine_table() {
 }
 
 /// Issue 11's flip limit: every ARKit and VRM name a face's rig makes, at full weight, turns at
-/// most 0.5 % of the front triangles over. Held on MediaPipe, Lee Perry-Smith and ICT 13k; the
-/// known gaps left, if any (`cargo run --release --example named_expressions`), are listed with
-/// their measured counts and held to them, so a regression shows. Regressions: ICT 13k's
+/// most 0.5 % of the front triangles over, and only in the lips and lids and the folds they make
+/// (within [`LIPS_MM`] of the mouth loop or [`LIDS_MM`] of an eye loop, in the front plane). The
+/// known gaps left (`cargo run --release --example named_expressions`) are listed with their
+/// measured counts and held to them, so a regression shows: every face's brow lowering
+/// (`browDown*`, and `angry`, which uses it) turns 1–6 triangles over at the corrugator's peak
+/// beside the inner canthus, 12–21 mm from the eye loop (README, known limitations); ICT 2500's
+/// forehead turns one-vertex peaks of the frontalis over (`browOuterUpLeft`, `surprised`), and
+/// its `mouthClose` 3 triangles 21–22 mm from the lips. Regression: Lee Perry-Smith's
+/// `noseSneer*` and `mouthUpperUp*` turned 6 / 11 and 5 / 7 triangles over 13–30 mm from the
+/// lips, at the nasolabial fold and the nose's wing, before the mid and lower face were relaxed
+/// (`pipeline::below_the_eyes_fixed`; now none there). Regressions: ICT 13k's
 /// `blink` (both eyes) turned 86 of 13 120 triangles (0.66 %) before the lids were relaxed
 /// after the lid closure (now 50), and its `jawForward` 142 and then 81 (0.62 %) before the
 /// harmonic patch (now 38); ICT 2500's `mouthPucker` 17 (0.68 %) before its two halves' sum was
 /// relaxed as one field (now 11).
-fn named_targets_flip_at_most_half_a_percent(face: usize, known_gaps: &[(&str, usize)]) {
+fn named_targets_flip_at_most_half_a_percent(
+    face: usize,
+    known_gaps: &[(&str, usize)],
+    known_away: &[(&str, usize)],
+) {
     let m = model(face);
     let limit = (0.005 * m.mesh.triangles.len() as f64).floor() as usize;
+    let places = FoldPlaces::of(m);
     let mut over = Vec::new();
+    let mut away = Vec::new();
     for e in arkit::EXPRESSIONS.iter().chain(&vrm::EXPRESSIONS) {
         let Some(r) = e.resolve(m.muscle_ids()) else {
             continue;
         };
         let posed = m.pose(&r.sliders).unwrap();
-        let flips =
-            facebem::measure::flipped_triangles(&m.mesh.vertices, &posed, &m.mesh.triangles).len();
+        let flipped =
+            facebem::measure::flipped_triangles(&m.mesh.vertices, &posed, &m.mesh.triangles);
+        let flips = flipped.len();
+        let far: Vec<String> = flipped
+            .iter()
+            .filter_map(|&t| {
+                let (lips_mm, lids_mm) = places.distances_mm(&m.mesh.triangles[t as usize]);
+                (lips_mm > LIPS_MM && lids_mm > LIDS_MM)
+                    .then(|| format!("t{t} ({lips_mm:.1} / {lids_mm:.1} mm)"))
+            })
+            .collect();
+        let allowed_far = known_away
+            .iter()
+            .find(|(name, _)| *name == e.name)
+            .map_or(0, |&(_, n)| n);
+        if far.len() > allowed_far {
+            away.push(format!("{}: {far:?}", e.name));
+        }
         let allowed = known_gaps
             .iter()
             .find(|(name, _)| *name == e.name)
             .map_or(limit, |&(_, n)| n);
         println!(
-            "{} {}: {flips} flips (allowed {allowed})",
+            "{} {}: {flips} flips (allowed {allowed}), {} away from the lips and lids (allowed \
+             {allowed_far})",
             support::FACES[face],
-            e.name
+            e.name,
+            far.len()
         );
         if flips > allowed {
             over.push(format!("{} {flips}", e.name));
@@ -400,23 +432,85 @@ fn named_targets_flip_at_most_half_a_percent(face: usize, known_gaps: &[(&str, u
         "{}: over {limit} flipped triangles: {over:?}",
         support::FACES[face]
     );
+    assert!(
+        away.is_empty(),
+        "{}: triangles turn over away from the lips and lids: {away:?}",
+        support::FACES[face]
+    );
+}
+
+/// Where issue 11 lets skin fold: within this distance of the mouth loop, mm (the lips and the
+/// folds beside them; `facebem::untangle::LIPS_MM`).
+const LIPS_MM: f64 = 12.0;
+/// The same for the eye loops (the lids and the folds at the canthi; wider than
+/// `facebem::untangle::LIDS_MM`, the band the pipeline relaxes, which stops short of the brows).
+const LIDS_MM: f64 = 12.0;
+
+/// The mouth and eye loops of a face in its canonical front plane.
+struct FoldPlaces {
+    canonical: Vec<DVec3>,
+    mouth: Vec<glam::DVec2>,
+    eyes: [Vec<glam::DVec2>; 2],
+    mm_per_unit: f64,
+}
+
+impl FoldPlaces {
+    fn of(m: &FaceModel) -> FoldPlaces {
+        let lm = FaceLandmarks::of(m).unwrap();
+        let canonical: Vec<DVec3> = m
+            .mesh
+            .vertices
+            .iter()
+            .map(|&p| lm.canonical_from_input.transform_point3(p))
+            .collect();
+        let front = |lp: &[u32]| -> Vec<glam::DVec2> {
+            lp.iter()
+                .map(|&v| canonical[v as usize].truncate())
+                .collect()
+        };
+        FoldPlaces {
+            mouth: front(&lm.loops.mouth),
+            eyes: [front(&lm.loops.eye_l), front(&lm.loops.eye_r)],
+            canonical,
+            mm_per_unit: lm.mm_per_unit,
+        }
+    }
+
+    /// Distances, mm, in the front plane from a triangle's centre to the mouth loop and to the
+    /// nearer eye loop.
+    fn distances_mm(&self, t: &[u32; 3]) -> (f64, f64) {
+        let centre = t
+            .iter()
+            .map(|&v| self.canonical[v as usize])
+            .sum::<DVec3>()
+            .truncate()
+            / 3.0;
+        let to = |lp: &[glam::DVec2]| {
+            face_prep::muscle_model::distance_to_loop(centre, lp) * self.mm_per_unit
+        };
+        (to(&self.mouth), to(&self.eyes[0]).min(to(&self.eyes[1])))
+    }
 }
 
 #[test]
 fn named_targets_flip_at_most_half_a_percent_mediapipe() {
-    named_targets_flip_at_most_half_a_percent(0, &[]);
+    named_targets_flip_at_most_half_a_percent(0, &[], &[("browDownLeft", 1), ("browDownRight", 1)]);
 }
 
 #[test]
 fn named_targets_flip_at_most_half_a_percent_lee_perry_smith() {
-    named_targets_flip_at_most_half_a_percent(2, &[]);
+    named_targets_flip_at_most_half_a_percent(
+        2,
+        &[],
+        &[("browDownLeft", 1), ("browDownRight", 5), ("angry", 1)],
+    );
 }
 
 /// Regression: `jawForward` turned 81 triangles over (0.62 %; 142 before that), at the mouth
 /// corners where the upper lip's underside meets the lower lip, before the harmonic patch.
 #[test]
 fn named_targets_flip_at_most_half_a_percent_ict_13k() {
-    named_targets_flip_at_most_half_a_percent(3, &[]);
+    named_targets_flip_at_most_half_a_percent(3, &[], &[("browDownLeft", 6), ("browDownRight", 6)]);
 }
 
 /// Regressions: `mouthPucker` turned 17 triangles over (0.68 %), the sum of the sphincter's two
@@ -424,5 +518,16 @@ fn named_targets_flip_at_most_half_a_percent_ict_13k() {
 /// (0.76 %) before the lids were relaxed after the lid closure (now 8).
 #[test]
 fn named_targets_flip_at_most_half_a_percent_ict_2500() {
-    named_targets_flip_at_most_half_a_percent(1, &[]);
+    named_targets_flip_at_most_half_a_percent(
+        1,
+        &[],
+        &[
+            ("browDownLeft", 5),
+            ("browDownRight", 3),
+            ("browOuterUpLeft", 1),
+            ("mouthClose", 3),
+            ("angry", 1),
+            ("surprised", 5),
+        ],
+    );
 }
