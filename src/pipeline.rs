@@ -444,6 +444,7 @@ pub fn build_face_model(
     if rig.params.muscle_model == face_prep::muscle_model::MuscleModel::Anatomical {
         let fixed = below_the_eyes_fixed(mesh, &rig);
         relax_each(mesh, &rig, &fixed, &mut displacements);
+        relax_brow_lowerers(mesh, &rig, &muscle_ids, &mut displacements);
     }
     control.report(Stage::Transfer, 1, 1);
     let basis = MuscleBasis {
@@ -599,6 +600,11 @@ fn fix_contours_and_corners(fixed: &mut [bool], loops: &FaceLoops, canonical: &[
     }
 }
 
+/// The lowest canonical y of two polylines (the eye loops' lowest point).
+fn lowest_y(a: &[glam::DVec2], b: &[glam::DVec2]) -> f64 {
+    a.iter().chain(b).map(|p| p.y).fold(f64::INFINITY, f64::min)
+}
+
 /// The mouth and eye loops (left, right) as polylines in the canonical front plane.
 fn front_loops(
     loops: &FaceLoops,
@@ -633,11 +639,7 @@ fn below_the_eyes_fixed(mesh: &FaceMesh, rig: &FaceRig) -> Vec<bool> {
     let (mouth, eye_l, eye_r) = front_loops(&loops, &canonical);
     let lips = crate::untangle::LIPS_MM / rig.mm_per_unit();
     let lids = crate::untangle::LIDS_MM / rig.mm_per_unit();
-    let eyes_bottom = eye_l
-        .iter()
-        .chain(&eye_r)
-        .map(|p| p.y)
-        .fold(f64::INFINITY, f64::min);
+    let eyes_bottom = lowest_y(&eye_l, &eye_r);
     let distance = face_prep::muscle_model::distance_to_loop;
     for (f, p) in fixed.iter_mut().zip(&canonical) {
         let p = p.truncate();
@@ -645,6 +647,93 @@ fn below_the_eyes_fixed(mesh: &FaceMesh, rig: &FaceRig) -> Vec<bool> {
             || distance(p, &mouth) <= lips
             || distance(p, &eye_l).min(distance(p, &eye_r)) <= lids;
     }
+    fix_contours_and_corners(&mut fixed, &loops, &canonical);
+    fixed
+}
+
+/// The ARKit expressions whose brow lowerer [`relax_brow_lowerers`] relaxes in their
+/// combination, with the control that takes the change (the expression's corrugator).
+const BROW_LOWERING: [(&str, face_prep::MuscleKind); 2] = [
+    ("browDownLeft", face_prep::MuscleKind::CorrugatorSuperciliiL),
+    (
+        "browDownRight",
+        face_prep::MuscleKind::CorrugatorSuperciliiR,
+    ),
+];
+
+/// A last pass over the brow lowerers. The corrugator pulls the skin over the frontal bone,
+/// a thin layer on the skull whose motion stays where its traction is: it gathers beside the
+/// inner canthus, and `browDownLeft`'s relaxed frontalis pushes the brow down onto it, turning
+/// triangles over 12–21 mm from the eye (ICT 13k: 28 turned, 6 of them there; Lee Perry-Smith
+/// 10 / 12; MediaPipe 4, the largest motion a 21 mm spike). Each corrugator is relaxed in its
+/// `browDown*` combination ([`crate::untangle::relax_in_combination`]; `angry` uses the same
+/// ratio of the two), then alone, over the upper face ([`above_the_eyes_fixed`]); the
+/// frontalis stays as solved (its brow raise is calibrated).
+fn relax_brow_lowerers(
+    mesh: &FaceMesh,
+    rig: &FaceRig,
+    muscle_ids: &[String],
+    displacements: &mut [Vec<DVec3>],
+) {
+    let fixed = above_the_eyes_fixed(mesh, rig);
+    let patch_radius = crate::untangle::PATCH_MM / rig.mm_per_unit();
+    for (name, carrier) in BROW_LOWERING {
+        let Some(k) = muscle_ids.iter().position(|id| id == carrier.id()) else {
+            continue;
+        };
+        let Some(resolved) = crate::expression_sets::find(name).and_then(|e| e.resolve(muscle_ids))
+        else {
+            continue;
+        };
+        let s_k = resolved.sliders[k];
+        if s_k == 0.0 {
+            continue;
+        }
+        let others: Vec<(usize, f64)> = resolved
+            .sliders
+            .iter()
+            .enumerate()
+            .filter(|&(i, &s)| i != k && s != 0.0)
+            .map(|(i, &s)| (i, s / s_k))
+            .collect();
+        let mut field = std::mem::take(&mut displacements[k]);
+        let views: Vec<(&[DVec3], f64)> = others
+            .iter()
+            .map(|&(i, w)| (displacements[i].as_slice(), w))
+            .collect();
+        crate::untangle::relax_in_combination(
+            &mesh.vertices,
+            &mesh.triangles,
+            &mut field,
+            &views,
+            &fixed,
+            patch_radius,
+        );
+        crate::untangle::relax_inversions(
+            &mesh.vertices,
+            &mesh.triangles,
+            &mut field,
+            &fixed,
+            patch_radius,
+        );
+        displacements[k] = field;
+    }
+}
+
+/// Vertices [`relax_brow_lowerers`] leaves alone: the mid and lower face (more than
+/// [`crate::untangle::LIDS_MM`] below the eye loops' lowest point), the outer contour, the eye
+/// loops and the mouth corners.
+fn above_the_eyes_fixed(mesh: &FaceMesh, rig: &FaceRig) -> Vec<bool> {
+    let Some((loops, canonical)) = crate::measure::canonical_loops(rig, mesh) else {
+        return vec![true; mesh.vertices.len()];
+    };
+    let (_, eye_l, eye_r) = front_loops(&loops, &canonical);
+    let lids = crate::untangle::LIDS_MM / rig.mm_per_unit();
+    let eyes_bottom = lowest_y(&eye_l, &eye_r);
+    let mut fixed: Vec<bool> = canonical
+        .iter()
+        .map(|p| p.y <= eyes_bottom - lids)
+        .collect();
     fix_contours_and_corners(&mut fixed, &loops, &canonical);
     fixed
 }

@@ -209,6 +209,71 @@ pub fn relax_sum(
     true
 }
 
+/// Relaxes `field` in the combination a named expression makes of it: `field + Σ wᵢ·otherᵢ`
+/// (each `(otherᵢ, wᵢ)` another control's field and its slider relative to `field`'s) is
+/// relaxed like one field, and `field` alone takes the whole change (the others stay as they
+/// are: they serve other expressions). Kept only if `field` alone then turns no more triangles
+/// over than before. Returns whether it was kept.
+///
+/// A brow lowerer needs this: `browDownLeft` is the corrugator with the frontalis relaxed by
+/// half, and the relaxed frontalis pushes the brow down onto the skin the corrugator gathers
+/// (ICT 13k: 28 turned triangles, 6 of them 12–17 mm from the eye; relaxed the corrugator
+/// alone, 25).
+///
+/// ```
+/// use glam::DVec3;
+/// // The centre vertex: `field` (at slider 1) moves it −2.1 along x, `other` at weight 1
+/// // another −0.9; contracted, `field` alone carries it past the fan's rim, and so do both.
+/// let v = [DVec3::new(-1.0, -1.0, 0.0), DVec3::new(1.0, -1.0, 0.0), DVec3::new(1.0, 1.0, 0.0),
+///          DVec3::new(-1.0, 1.0, 0.0), DVec3::ZERO];
+/// let t = [[0, 1, 4], [1, 2, 4], [2, 3, 4], [3, 0, 4]];
+/// let mut field = vec![DVec3::ZERO; 5];
+/// field[4] = DVec3::new(-2.1, 0.0, 0.0);
+/// let mut other = vec![DVec3::ZERO; 5];
+/// other[4] = DVec3::new(-0.9, 0.0, 0.0);
+/// let fixed = [true, true, true, true, false];
+/// let combined = |f: &[DVec3]| f.iter().zip(&other).map(|(a, b)| *a + *b).collect::<Vec<_>>();
+/// assert_eq!(facebem::untangle::turned_over(&v, &t, &combined(&field)), vec![1]);
+/// assert!(facebem::untangle::relax_in_combination(&v, &t, &mut field, &[(&other, 1.0)], &fixed, 0.0));
+/// assert!(facebem::untangle::turned_over(&v, &t, &combined(&field)).is_empty());
+/// assert!(facebem::untangle::turned_over(&v, &t, &field).is_empty());
+/// ```
+pub fn relax_in_combination(
+    neutral: &[DVec3],
+    triangles: &[[u32; 3]],
+    field: &mut [DVec3],
+    others: &[(&[DVec3], f64)],
+    fixed: &[bool],
+    patch_radius: f64,
+) -> bool {
+    let rest = |v: usize| -> DVec3 {
+        others
+            .iter()
+            .map(|(f, w)| f.get(v).copied().unwrap_or(DVec3::ZERO) * *w)
+            .sum()
+    };
+    let mut combined: Vec<DVec3> = field
+        .iter()
+        .enumerate()
+        .map(|(v, u)| *u + rest(v))
+        .collect();
+    if relax_inversions(neutral, triangles, &mut combined, fixed, patch_radius) == 0 {
+        return false;
+    }
+    let relaxed: Vec<DVec3> = combined
+        .iter()
+        .enumerate()
+        .map(|(v, u)| *u - rest(v))
+        .collect();
+    if turned_over(neutral, triangles, &relaxed).len()
+        > turned_over(neutral, triangles, field).len()
+    {
+        return false;
+    }
+    field.copy_from_slice(&relaxed);
+    true
+}
+
 /// Most rounds of [`relax_inversions`]' second stage (evening out turned triangles).
 pub const FLATTEN_ROUNDS: usize = 30;
 

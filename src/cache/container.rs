@@ -35,8 +35,9 @@ pub const MAGIC: [u8; 8] = *b"FACEBEM\x1a";
 /// ([`crate::untangle::relax_inversions`]' second stage) and a large face's carried-over
 /// vertices relaxed after the lid closure; 19: the lids relaxed after the lid closure; 20: turned
 /// patches smoothed (the third stage) and `mouthPucker`'s two sphincter halves relaxed as a sum; 21: the mid and lower face
-/// relaxed beyond the lips and lids).
-pub const FORMAT_VERSION: u32 = 21;
+/// relaxed beyond the lips and lids; 22: each corrugator relaxed in its `browDown*`
+/// combination).
+pub const FORMAT_VERSION: u32 = 22;
 /// Size of the fixed header in bytes.
 pub const HEADER_LEN: usize = 8 + 4 + 32 + 32 + 8 + 32;
 
