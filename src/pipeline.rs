@@ -444,6 +444,7 @@ pub fn build_face_model(
     if rig.params.muscle_model == face_prep::muscle_model::MuscleModel::Anatomical {
         let fixed = below_the_eyes_fixed(mesh, &rig);
         relax_each(mesh, &rig, &fixed, &mut displacements);
+        relax_each_lengthened(mesh, &rig, &fixed, &mut displacements);
         relax_brow_lowerers(mesh, &rig, &muscle_ids, &mut displacements);
     }
     control.report(Stage::Transfer, 1, 1);
@@ -519,6 +520,41 @@ fn relax_each(mesh: &FaceMesh, rig: &FaceRig, fixed: &[bool], displacements: &mu
             fixed,
             patch_radius,
         );
+    }
+}
+
+/// Relaxes every response where its other direction (slider +1, the muscle lengthened past
+/// rest, which named expressions use: `mouthClose` lengthens the levator labii superioris by
+/// 0.4) turns triangles over, moving only the vertices not in `fixed`
+/// ([`crate::untangle::relax_inversions`] of the negated field); kept only if the field then
+/// turns no more triangles over at full contraction than before. Regression: ICT 2500's
+/// `mouthClose` turned 3 triangles over at the nostrils, 21–22 mm from the lips, every one of
+/// them from the lengthened levator labii superioris.
+fn relax_each_lengthened(
+    mesh: &FaceMesh,
+    rig: &FaceRig,
+    fixed: &[bool],
+    displacements: &mut [Vec<DVec3>],
+) {
+    let patch_radius = crate::untangle::PATCH_MM / rig.mm_per_unit();
+    for field in displacements {
+        let mut lengthened: Vec<DVec3> = field.iter().map(|u| -*u).collect();
+        let moved = crate::untangle::relax_inversions(
+            &mesh.vertices,
+            &mesh.triangles,
+            &mut lengthened,
+            fixed,
+            patch_radius,
+        );
+        if moved == 0 {
+            continue;
+        }
+        let relaxed: Vec<DVec3> = lengthened.iter().map(|u| -*u).collect();
+        let turned =
+            |f: &[DVec3]| crate::untangle::turned_over(&mesh.vertices, &mesh.triangles, f).len();
+        if turned(&relaxed) <= turned(field) {
+            *field = relaxed;
+        }
     }
 }
 

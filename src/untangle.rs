@@ -53,20 +53,40 @@ pub const LIDS_MM: f64 = 8.0;
 /// assert!(facebem::untangle::turned_over(&v, &[[0, 1, 2]], &[DVec3::X; 3]).is_empty());
 /// ```
 pub fn turned_over(neutral: &[DVec3], triangles: &[[u32; 3]], field: &[DVec3]) -> Vec<usize> {
-    let normal = |t: &[u32; 3], s: f64| {
+    triangles
+        .iter()
+        .enumerate()
+        .filter(|(_, t)| t.iter().all(|&i| (i as usize) < neutral.len()))
+        .filter(|(_, t)| is_turned(neutral, t, field))
+        .map(|(i, _)| i)
+        .collect()
+}
+
+/// Whether `field` turns triangle `t` (its corners in range of `neutral`) over at full
+/// contraction; a corner outside `field` does not move.
+fn is_turned(neutral: &[DVec3], t: &[u32; 3], field: &[DVec3]) -> bool {
+    let normal = |s: f64| {
         let [a, b, c] = t.map(|i| {
             let i = i as usize;
             neutral[i] + s * field.get(i).copied().unwrap_or(DVec3::ZERO)
         });
         (b - a).cross(c - a)
     };
-    triangles
-        .iter()
-        .enumerate()
-        .filter(|(_, t)| t.iter().all(|&i| (i as usize) < neutral.len()))
-        .filter(|(_, t)| normal(t, 0.0).dot(normal(t, -1.0)) <= 0.0)
-        .map(|(i, _)| i)
-        .collect()
+    normal(0.0).dot(normal(-1.0)) <= 0.0
+}
+
+/// The triangles at each of the first `n` vertices (triangles with a corner out of range are
+/// left out).
+fn incidence(n: usize, triangles: &[[u32; 3]]) -> Vec<Vec<usize>> {
+    let mut incident: Vec<Vec<usize>> = vec![Vec::new(); n];
+    for (t, tri) in triangles.iter().enumerate() {
+        if tri.iter().all(|&v| (v as usize) < n) {
+            for &v in tri {
+                incident[v as usize].push(t);
+            }
+        }
+    }
+    incident
 }
 
 /// Relaxes `field` (a control's displacement at slider 1 on `neutral`) where it turns triangles
@@ -290,21 +310,8 @@ fn flatten_turned(
     moved: &mut [bool],
 ) {
     let n = moved.len();
-    let mut incident: Vec<Vec<usize>> = vec![Vec::new(); n];
-    for (t, tri) in triangles.iter().enumerate() {
-        if tri.iter().all(|&v| (v as usize) < n) {
-            for &v in tri {
-                incident[v as usize].push(t);
-            }
-        }
-    }
-    let is_turned = |t: usize, field: &[DVec3]| {
-        let normal = |s: f64| {
-            let [a, b, c] = triangles[t].map(|i| neutral[i as usize] + s * field[i as usize]);
-            (b - a).cross(c - a)
-        };
-        normal(0.0).dot(normal(-1.0)) <= 0.0
-    };
+    let incident = incidence(n, triangles);
+    let is_turned = |t: usize, field: &[DVec3]| is_turned(neutral, &triangles[t], field);
     for _ in 0..FLATTEN_ROUNDS {
         let turned = turned_over(neutral, triangles, field);
         let mut improved = false;
@@ -431,20 +438,21 @@ fn smooth_patches(
         }
         components.push(members);
     }
-    let is_turned = |t: &[u32; 3], field: &[DVec3]| {
-        let normal = |s: f64| {
-            let [a, b, c] = t.map(|i| neutral[i as usize] + s * field[i as usize]);
-            (b - a).cross(c - a)
-        };
-        normal(0.0).dot(normal(-1.0)) <= 0.0
-    };
-    for (id, members) in components.iter().enumerate() {
-        let around: Vec<&[u32; 3]> = triangles
+    let incident = incidence(n, triangles);
+    for members in &components {
+        // The triangles with a corner in the component.
+        let mut around: Vec<usize> = members
             .iter()
-            .filter(|t| t.iter().all(|&v| (v as usize) < n))
-            .filter(|t| t.iter().any(|&v| component[v as usize] == id))
+            .flat_map(|&v| incident[v].iter().copied())
             .collect();
-        let count = |field: &[DVec3]| around.iter().filter(|t| is_turned(t, field)).count();
+        around.sort_unstable();
+        around.dedup();
+        let count = |field: &[DVec3]| {
+            around
+                .iter()
+                .filter(|&&t| is_turned(neutral, &triangles[t], field))
+                .count()
+        };
         let before_count = count(field);
         if before_count == 0 {
             continue;

@@ -511,12 +511,10 @@ fn named_targets_flip_at_most_half_a_percent_ict_13k() {
 
 /// Regressions: `mouthPucker` turned 17 triangles over (0.68 %), the sum of the sphincter's two
 /// halves each relaxed on its own, before the sum was relaxed as one field; `blink` turned 19
-/// (0.76 %) before the lids were relaxed after the lid closure (now 8).
+/// (0.76 %) before the lids were relaxed after the lid closure (now 8); `mouthClose` turned 3
+/// over at the nostrils, 21–22 mm from the lips, before the lengthened direction of each
+/// response was relaxed too (`pipeline::relax_each_lengthened`).
 #[test]
 fn named_targets_flip_at_most_half_a_percent_ict_2500() {
-    named_targets_flip_at_most_half_a_percent(
-        1,
-        &[],
-        &[("browOuterUpLeft", 1), ("mouthClose", 3), ("surprised", 5)],
-    );
+    named_targets_flip_at_most_half_a_percent(1, &[], &[("browOuterUpLeft", 1), ("surprised", 5)]);
 }
