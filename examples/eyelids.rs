@@ -83,12 +83,7 @@ fn main() -> anyhow::Result<()> {
 fn report(model: &FaceModel) -> anyhow::Result<()> {
     let lm = FaceLandmarks::of(model).ok_or_else(|| anyhow::anyhow!("no four loops"))?;
     let mm = lm.mm_per_unit;
-    let c: Vec<DVec3> = model
-        .mesh
-        .vertices
-        .iter()
-        .map(|&p| lm.canonical_from_input.transform_point3(p))
-        .collect();
+    let c: Vec<DVec3> = lm.canonical_points(&model.mesh.vertices);
     for (id, side) in [
         ("orbicularis_oculi_palpebral_l", Side::Left),
         ("orbicularis_oculi_palpebral_r", Side::Right),

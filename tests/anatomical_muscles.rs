@@ -182,12 +182,7 @@ fn largest_motion_in_the_muscles_region(face: usize) {
 fn flips_only_at_the_lips(face: usize) {
     let m = model(face);
     let lm = landmarks(m);
-    let c: Vec<DVec3> = m
-        .mesh
-        .vertices
-        .iter()
-        .map(|&p| lm.canonical_from_input.transform_point3(p))
-        .collect();
+    let c: Vec<DVec3> = lm.canonical_points(&m.mesh.vertices);
     let mouth: Vec<glam::DVec2> = lm
         .loops
         .mouth
@@ -342,12 +337,7 @@ fn zygomaticus_ict_2500_left() {
 fn mediapipe_left_and_right_mirror_within_half_a_millimetre() {
     let m = model(0);
     let lm = landmarks(m);
-    let c: Vec<DVec3> = m
-        .mesh
-        .vertices
-        .iter()
-        .map(|&p| lm.canonical_from_input.transform_point3(p))
-        .collect();
+    let c: Vec<DVec3> = lm.canonical_points(&m.mesh.vertices);
     let mirror_of: Vec<usize> = c
         .iter()
         .map(|p| {

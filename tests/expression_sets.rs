@@ -457,12 +457,7 @@ struct FoldPlaces {
 impl FoldPlaces {
     fn of(m: &FaceModel) -> FoldPlaces {
         let lm = FaceLandmarks::of(m).unwrap();
-        let canonical: Vec<DVec3> = m
-            .mesh
-            .vertices
-            .iter()
-            .map(|&p| lm.canonical_from_input.transform_point3(p))
-            .collect();
+        let canonical: Vec<DVec3> = lm.canonical_points(&m.mesh.vertices);
         let front = |lp: &[u32]| -> Vec<glam::DVec2> {
             lp.iter()
                 .map(|&v| canonical[v as usize].truncate())

@@ -42,12 +42,7 @@ impl<'a> Measured<'a> {
     fn of(face: usize) -> Measured<'a> {
         let m = model(face);
         let lm = FaceLandmarks::of(m).expect("four loops");
-        let canonical = m
-            .mesh
-            .vertices
-            .iter()
-            .map(|&p| lm.canonical_from_input.transform_point3(p))
-            .collect();
+        let canonical = lm.canonical_points(&m.mesh.vertices);
         Measured { m, lm, canonical }
     }
 

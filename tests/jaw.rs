@@ -45,12 +45,7 @@ struct JawPoints {
 
 fn points(m: &FaceModel) -> JawPoints {
     let lm = FaceLandmarks::of(m).expect("four loops");
-    let canon: Vec<DVec3> = m
-        .mesh
-        .vertices
-        .iter()
-        .map(|&p| lm.canonical_from_input.transform_point3(p))
-        .collect();
+    let canon: Vec<DVec3> = lm.canonical_points(&m.mesh.vertices);
     let centroid = |l: &[u32]| l.iter().map(|&v| canon[v as usize]).sum::<DVec3>() / l.len() as f64;
     let (eye_l, eye_r) = (centroid(&lm.loops.eye_l), centroid(&lm.loops.eye_r));
     let mouth_c = centroid(&lm.loops.mouth);
