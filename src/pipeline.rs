@@ -442,9 +442,37 @@ pub fn build_face_model(
         );
     }
     if rig.params.muscle_model == face_prep::muscle_model::MuscleModel::Anatomical {
-        let fixed = below_the_eyes_fixed(mesh, &rig);
+        let fixed = beyond_lips_and_lids_fixed(mesh, &rig, Forehead::Fixed);
         relax_each(mesh, &rig, &fixed, &mut displacements);
-        relax_each_lengthened(mesh, &rig, &fixed, &mut displacements);
+        relax_each_guarded(
+            mesh,
+            &rig,
+            &fixed,
+            Direction::Lengthened,
+            &mut displacements,
+        );
+        let forehead_free = beyond_lips_and_lids_fixed(mesh, &rig, Forehead::Free);
+        relax_each_guarded(
+            mesh,
+            &rig,
+            &forehead_free,
+            Direction::Contraction,
+            &mut displacements,
+        );
+        relax_each_guarded(
+            mesh,
+            &rig,
+            &forehead_free,
+            Direction::HalfLengthened,
+            &mut displacements,
+        );
+        relax_each_guarded(
+            mesh,
+            &rig,
+            &above_the_eyes_fixed(mesh, &rig),
+            Direction::HalfLengthened,
+            &mut displacements,
+        );
         relax_brow_lowerers(mesh, &rig, &muscle_ids, &mut displacements);
     }
     control.report(Stage::Transfer, 1, 1);
@@ -525,37 +553,72 @@ fn relax_each(mesh: &FaceMesh, rig: &FaceRig, fixed: &[bool], displacements: &mu
     });
 }
 
-/// Relaxes every response where its other direction (slider +1, the muscle lengthened past
-/// rest, which named expressions use: `mouthClose` lengthens the levator labii superioris by
-/// 0.4) turns triangles over, moving only the vertices not in `fixed`
-/// ([`crate::untangle::relax_inversions`] of the negated field); kept only if the field then
-/// turns no more triangles over at full contraction than before. Regression: ICT 2500's
-/// `mouthClose` turned 3 triangles over at the nostrils, 21–22 mm from the lips, every one of
-/// them from the lengthened levator labii superioris.
-fn relax_each_lengthened(
+/// Which way a response is relaxed by [`relax_each_guarded`].
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Direction {
+    /// The field as it is (full contraction).
+    Contraction,
+    /// The negated field (slider +1, the muscle lengthened past rest, which named expressions
+    /// use: `mouthClose` lengthens the levator labii superioris by 0.4).
+    Lengthened,
+    /// The negated field at half value (`browDownLeft` lengthens the frontalis by 0.5): only
+    /// what turns over at that value is relaxed.
+    HalfLengthened,
+}
+
+/// Relaxes one direction of every response ([`crate::untangle::relax_inversions`] of the field
+/// or of its negation, moving only the vertices not in `fixed`), kept only where the other
+/// direction then turns no more triangles over: one field serves both slider directions, and
+/// smoothing where one turns triangles over can turn the other's over.
+///
+/// Regressions: ICT 2500's `mouthClose` turned 3 triangles over at the nostrils, 21–22 mm from
+/// the lips, every one of them from the lengthened levator labii superioris (the lengthened
+/// pass); its `surprised` turned 5 over on the brow line, 13–17 mm above the eye loops, at the
+/// frontalis's one-vertex peaks (the contraction pass over the forehead); its `browDownLeft`
+/// turned one over 9 mm above the eye loop, from the frontalis lengthened by half (the
+/// half-lengthened pass over the forehead; relaxed at full value there instead, MediaPipe's
+/// brow raise fell from 10.6 to 7.5 mm). ICT 13k's `disgust` (the frontalis lengthened by 0.3)
+/// turned 16 upper-lid triangles over, 6–7 mm above the eye loops (the half-lengthened pass
+/// over the lids and forehead; run alone, without the forehead pass before it, it left ICT
+/// 2500's `browDownLeft` one turned triangle 12 mm above the eye).
+fn relax_each_guarded(
     mesh: &FaceMesh,
     rig: &FaceRig,
     fixed: &[bool],
+    direction: Direction,
     displacements: &mut [Vec<DVec3>],
 ) {
     use rayon::prelude::*;
     let patch_radius = crate::untangle::PATCH_MM / rig.mm_per_unit();
+    let (sign, value) = match direction {
+        Direction::Contraction => (1.0, 1.0),
+        Direction::Lengthened => (-1.0, 1.0),
+        Direction::HalfLengthened => (-1.0, 0.5),
+    };
+    // The other direction at full and at half value (named expressions use both).
+    let turned_other = |f: &[DVec3]| -> [usize; 2] {
+        [1.0, 0.5].map(|value| {
+            let other: Vec<DVec3> = f.iter().map(|u| *u * (-sign * value)).collect();
+            crate::untangle::turned_over(&mesh.vertices, &mesh.triangles, &other).len()
+        })
+    };
     displacements.par_iter_mut().for_each(|field| {
-        let mut lengthened: Vec<DVec3> = field.iter().map(|u| -*u).collect();
+        let mut relaxed: Vec<DVec3> = field.iter().map(|u| *u * (sign * value)).collect();
         let moved = crate::untangle::relax_inversions(
             &mesh.vertices,
             &mesh.triangles,
-            &mut lengthened,
+            &mut relaxed,
             fixed,
             patch_radius,
         );
         if moved == 0 {
             return;
         }
-        let relaxed: Vec<DVec3> = lengthened.iter().map(|u| -*u).collect();
-        let turned =
-            |f: &[DVec3]| crate::untangle::turned_over(&mesh.vertices, &mesh.triangles, f).len();
-        if turned(&relaxed) <= turned(field) {
+        for u in &mut relaxed {
+            *u /= sign * value;
+        }
+        let (after, before) = (turned_other(&relaxed), turned_other(field));
+        if after[0] <= before[0] && after[1] <= before[1] {
             *field = relaxed;
         }
     });
@@ -661,16 +724,27 @@ fn front_loops(
     )
 }
 
-/// Vertices the last [`crate::untangle::relax_inversions`] pass leaves alone. It relaxes the
-/// mid and lower face beyond the lips and lids, where the lip elevators fold the skin at the
-/// nasolabial fold and the nose's wing (Lee Perry-Smith's noseSneer and mouthUpperUp: 6 / 11
-/// and 5 / 7 turned triangles 13–30 mm from the lips, none after): every vertex more than
-/// [`crate::untangle::LIDS_MM`] below the lower of the eye loops' lowest points, but not the
-/// lips and lids (within [`crate::untangle::LIPS_MM`] of the mouth loop or `LIDS_MM` of an eye
-/// loop; the earlier passes relaxed them), the outer contour or the mouth corners. The forehead
-/// and brows stay as solved: relaxed, ICT 2500's right brow point rose 7.6 mm instead of
-/// 9.2 at full frontalis, 2.1 mm less than its left.
-fn below_the_eyes_fixed(mesh: &FaceMesh, rig: &FaceRig) -> Vec<bool> {
+/// Whether [`beyond_lips_and_lids_fixed`] leaves the upper face (above the eyes' lowest
+/// point) as it is.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Forehead {
+    /// Relaxed with the mid and lower face.
+    Free,
+    /// Left as solved.
+    Fixed,
+}
+
+/// Vertices the last [`crate::untangle::relax_inversions`] passes leave alone. They relax the
+/// face beyond the lips and lids, where the lip elevators fold the skin at the nasolabial fold
+/// and the nose's wing (Lee Perry-Smith's noseSneer and mouthUpperUp: 6 / 11 and 5 / 7 turned
+/// triangles 13–30 mm from the lips, none after) and, with [`Forehead::Free`], where the
+/// frontalis's brow raise turns the brow line over (ICT 2500's `surprised`: 5 turned triangles
+/// 13–17 mm above the eye loops, none after; its brow points rise 10.0 / 9.2 mm at full
+/// frontalis). Fixed: the lips and lids (within [`crate::untangle::LIPS_MM`] of the mouth
+/// loop or [`crate::untangle::LIDS_MM`] of an eye loop; the earlier passes relaxed them), the
+/// outer contour, the mouth corners and, with [`Forehead::Fixed`], every vertex above
+/// `LIDS_MM` below the eye loops' lowest point.
+fn beyond_lips_and_lids_fixed(mesh: &FaceMesh, rig: &FaceRig, forehead: Forehead) -> Vec<bool> {
     let mut fixed = vec![true; mesh.vertices.len()];
     let Some((loops, canonical)) = crate::measure::canonical_loops(rig, mesh) else {
         return fixed;
@@ -682,7 +756,7 @@ fn below_the_eyes_fixed(mesh: &FaceMesh, rig: &FaceRig) -> Vec<bool> {
     let distance = face_prep::muscle_model::distance_to_loop;
     for (f, p) in fixed.iter_mut().zip(&canonical) {
         let p = p.truncate();
-        *f = p.y > eyes_bottom - lids
+        *f = (forehead == Forehead::Fixed && p.y > eyes_bottom - lids)
             || distance(p, &mouth) <= lips
             || distance(p, &eye_l).min(distance(p, &eye_r)) <= lids;
     }

@@ -14,7 +14,9 @@ use crate::pipeline::PipelineError;
 pub(crate) struct Solved {
     /// `element[k][e]`: displacement of shell element `e` (at its centroid) for muscle `k`.
     pub element: Vec<Vec<DVec3>>,
-    /// `vertex[k][v]`: area-weighted average of the adjacent elements, per shell vertex.
+    /// `vertex[k][v]`: per shell vertex, from the adjacent elements (a linear fit in the
+    /// anatomical model, [`bem_core::element_to_vertex_linear`]; the area-weighted average in
+    /// the thesis model).
     pub vertex: Vec<Vec<DVec3>>,
     /// What bem-core measured about the solve (condition estimate, quadrature accuracy).
     pub report: bem_core::SolveReport,
@@ -110,9 +112,24 @@ pub(crate) fn solve_rig(
     // A force has no unit: scale each force-driven response to its target (the largest
     // front-surface displacement of the muscle's full contraction).
     let front_vertices = rig.face_vertex_count.min(rig.shell.vertices.len());
+    let prescribed: Vec<bool> = kinds
+        .iter()
+        .map(|&k| k == ElementKind::Displacement)
+        .collect();
+    // Vertex values: the anatomical model fits them linearly over each smooth vertex's
+    // adjacent elements, so a coarse copy's large elements do not bias them (a one-vertex peak
+    // of the frontalis on ICT 2500's copy turned the brow line over); the thesis model keeps
+    // the plain area-weighted average, reproducing its basis bit for bit.
+    let to_vertex = |u: &[DVec3]| {
+        if rig.params.muscle_model == MuscleModel::Anatomical {
+            bem_core::element_to_vertex_linear(&mesh, u, &prescribed)
+        } else {
+            bem_core::element_to_vertex(&mesh, u)
+        }
+    };
     for (k, field) in element.iter_mut().enumerate() {
         if let Some(target) = rig.force_target(k) {
-            let at_vertices = bem_core::element_to_vertex(&mesh, field)?;
+            let at_vertices = to_vertex(field)?;
             let factor =
                 face_prep::force_controls::scale_to_target(&at_vertices[..front_vertices], target);
             for u in field.iter_mut() {
@@ -122,7 +139,7 @@ pub(crate) fn solve_rig(
     }
     let mut vertex: Vec<Vec<DVec3>> = element
         .iter()
-        .map(|u| bem_core::element_to_vertex(&mesh, u))
+        .map(|u| to_vertex(u))
         .collect::<Result<_, _>>()?;
     if rig.params.muscle_model == MuscleModel::Anatomical {
         // A vertex of a fixed (skull) element is on bone: the outer contour on the fixed rim,

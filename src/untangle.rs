@@ -232,8 +232,9 @@ pub fn relax_sum(
 /// Relaxes `field` in the combination a named expression makes of it: `field + Σ wᵢ·otherᵢ`
 /// (each `(otherᵢ, wᵢ)` another control's field and its slider relative to `field`'s) is
 /// relaxed like one field, and `field` alone takes the whole change (the others stay as they
-/// are: they serve other expressions). Kept only if `field` alone then turns no more triangles
-/// over than before. Returns whether it was kept.
+/// are: they serve other expressions); `field` alone is then relaxed once more
+/// ([`relax_inversions`]). Kept only if `field` alone then turns no more triangles over than
+/// before and the combination fewer. Returns whether it was kept.
 ///
 /// A brow lowerer needs this: `browDownLeft` is the corrugator with the frontalis relaxed by
 /// half, and the relaxed frontalis pushes the brow down onto the skin the corrugator gathers
@@ -280,13 +281,21 @@ pub fn relax_in_combination(
     if relax_inversions(neutral, triangles, &mut combined, fixed, patch_radius) == 0 {
         return false;
     }
-    let relaxed: Vec<DVec3> = combined
+    let mut relaxed: Vec<DVec3> = combined
         .iter()
         .enumerate()
         .map(|(v, u)| *u - rest(v))
         .collect();
+    // Taking the combination's change can turn `field` alone over where the others held it
+    // flat: relax it alone too, and keep the result only if the combination still turns fewer.
+    relax_inversions(neutral, triangles, &mut relaxed, fixed, patch_radius);
+    let combination_turned = |f: &[DVec3]| {
+        let sum: Vec<DVec3> = f.iter().enumerate().map(|(v, u)| *u + rest(v)).collect();
+        turned_over(neutral, triangles, &sum).len()
+    };
     if turned_over(neutral, triangles, &relaxed).len()
         > turned_over(neutral, triangles, field).len()
+        || combination_turned(&relaxed) >= combination_turned(field)
     {
         return false;
     }

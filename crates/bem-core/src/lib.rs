@@ -79,7 +79,7 @@ pub use naive::assemble_h_g;
 pub use quadrature::QuadratureParams;
 pub use response::{DisplacementGroup, ResponseBasis};
 pub use solve::{DEFAULT_MAX_CONDITION, Solution, SolveParams, SolveReport, solve};
-pub use vertex::element_to_vertex;
+pub use vertex::{element_to_vertex, element_to_vertex_linear};
 
 pub use faer;
 pub use glam;
