@@ -201,19 +201,8 @@ fn jaw_open_drops_the_lower_face(face: usize, flip_limit: f64) {
 fn jaw_modes_keep_the_upper_face(face: usize) {
     let m = model(face);
     let p = points(m);
-    let jaw = m.rig.jaw();
-    // Above the jaw segment by the rig's longest contour edge (a rim element whose centroid is
-    // in the segment reaches up to one edge above it; large faces are simulated on a
-    // simplified copy, whose contour the full mesh's contour is interpolated from).
-    let contour = &m.rig.loops.face;
-    let longest_edge = (0..contour.len())
-        .map(|i| {
-            let a = m.rig.shell.vertices[contour[i] as usize];
-            let b = m.rig.shell.vertices[contour[(i + 1) % contour.len()] as usize];
-            a.distance(b)
-        })
-        .fold(0.0, f64::max);
-    let seam_y = jaw.hinge.y + longest_edge;
+    // Above the jaw segment by the rig's longest contour edge.
+    let seam_y = support::above_the_jaw_y(m);
     let upper_contour: Vec<usize> =
         p.lm.loops
             .face

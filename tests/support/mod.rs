@@ -173,3 +173,18 @@ pub fn rewritten(mesh: &face_prep::FaceMesh) -> Rewritten {
         input_from_original,
     }
 }
+
+/// Canonical y above which a face's outer contour is off the jaw segment: the jaw's hinge plus
+/// the rig's longest contour edge (a rim element whose centroid is in the segment reaches up to
+/// one edge above it; a large face's contour is interpolated from its simplified copy's).
+pub fn above_the_jaw_y(m: &facebem::FaceModel) -> f64 {
+    let contour = &m.rig.loops.face;
+    let longest_edge = (0..contour.len())
+        .map(|i| {
+            let a = m.rig.shell.vertices[contour[i] as usize];
+            let b = m.rig.shell.vertices[contour[(i + 1) % contour.len()] as usize];
+            a.distance(b)
+        })
+        .fold(0.0, f64::max);
+    m.rig.jaw().hinge.y + longest_edge
+}
