@@ -567,7 +567,7 @@ enum Direction {
 }
 
 /// Relaxes one direction of every response ([`crate::untangle::relax_inversions`] of the field
-/// or of its negation, moving only the vertices not in `fixed`), kept only where the other
+/// or of its negation, moving only the vertices not in `fixed`), kept only if the other
 /// direction then turns no more triangles over: one field serves both slider directions, and
 /// smoothing where one turns triangles over can turn the other's over.
 ///
