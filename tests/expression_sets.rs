@@ -510,7 +510,7 @@ fn named_targets_flip_at_most_half_a_percent_ict_13k() {
 /// halves each relaxed on its own, before the sum was relaxed as one field; `blink` turned 19
 /// (0.76 %) before the lids were relaxed after the lid closure (now 8); `mouthClose` turned 3
 /// over at the nostrils, 21–22 mm from the lips, before the lengthened direction of each
-/// response was relaxed too (`pipeline::relax_each_lengthened`).
+/// response was relaxed too (`pipeline::relax_each_guarded`).
 #[test]
 fn named_targets_flip_at_most_half_a_percent_ict_2500() {
     named_targets_flip_at_most_half_a_percent(1, &[], &[]);
