@@ -507,8 +507,8 @@ fn named_targets_flip_at_most_half_a_percent_ict_13k() {
 }
 
 /// Regressions: `mouthPucker` turned 17 triangles over (0.68 %), the sum of the sphincter's two
-/// halves each relaxed on its own, before the sum was relaxed as one field; `blink` turned 19
-/// (0.76 %) before the lids were relaxed after the lid closure (now 8); `mouthClose` turned 3
+/// halves each relaxed on its own, before the sum was relaxed as one field (now 7); `blink`
+/// turned 19 (0.76 %) before the lids were relaxed after the lid closure (now 9); `mouthClose` turned 3
 /// over at the nostrils, 21–22 mm from the lips, before the lengthened direction of each
 /// response was relaxed too (`pipeline::relax_each_guarded`).
 #[test]
