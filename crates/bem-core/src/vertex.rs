@@ -130,21 +130,21 @@ fn fit_at_vertex(
         .map(|&e| mesh.area(e as usize) * mesh.normal(e as usize))
         .sum::<DVec3>()
         .try_normalize()?;
-    let side: Vec<usize> = elements.iter().map(|&e| e as usize).collect();
-    let sharp = side.iter().enumerate().any(|(i, &a)| {
-        side[i + 1..]
+    let patch: Vec<usize> = elements.iter().map(|&e| e as usize).collect();
+    let sharp = patch.iter().enumerate().any(|(i, &a)| {
+        patch[i + 1..]
             .iter()
             .any(|&b| mesh.normal(a).dot(mesh.normal(b)) < SMOOTH_SIDE_COS)
     });
-    if side.len() < 3 || sharp {
+    if patch.len() < 3 || sharp {
         return None;
     }
     let (t1, t2) = normal.any_orthonormal_pair();
-    let scale = side
+    let scale = patch
         .iter()
         .map(|&e| (mesh.centroid(e) - x).length())
         .sum::<f64>()
-        / side.len() as f64;
+        / patch.len() as f64;
     if scale <= 0.0 || !scale.is_finite() {
         return None;
     }
@@ -152,7 +152,7 @@ fn fit_at_vertex(
     let mut rhs = [DVec3::ZERO; 3];
     let mut total = 0.0;
     let (mut lo, mut hi) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
-    for &e in &side {
+    for &e in &patch {
         let d = (mesh.centroid(e) - x) / scale;
         let basis = DVec3::new(1.0, d.dot(t1), d.dot(t2));
         let w = mesh.area(e);
