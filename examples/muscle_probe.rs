@@ -3,7 +3,7 @@
 //! brows' motion, the contour's motion, flipped triangles, and the mouth width change.
 //!
 //! ```text
-//! cargo run --release --example muscle_probe [-- face.obj ...] [-- --only id,id] [-- --max-triangles N] [-- --offset F] [-- --taper F]
+//! cargo run --release --example muscle_probe [-- face.obj ...] [-- --only id,id] [-- --max-triangles N] [-- --target N] [-- --offset F] [-- --taper F]
 //! ```
 
 use std::path::Path;
@@ -23,6 +23,10 @@ fn main() -> anyhow::Result<()> {
     let mut params = PipelineParams::default();
     if let Some(w) = args.windows(2).find(|w| w[0] == "--max-triangles") {
         params.large_face.max_triangles = w[1].parse()?;
+    }
+    // Triangle count of the simplified copy (1500 by default).
+    if let Some(w) = args.windows(2).find(|w| w[0] == "--target") {
+        params.large_face.target_triangles = w[1].parse()?;
     }
     // The shell's back-face offset and rim thickness, fraction of the face size (both 0.015 by
     // default).

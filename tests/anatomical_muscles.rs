@@ -458,6 +458,18 @@ fn ict_2500_left_and_right_mirror_within_a_millimetre_at_the_brows() {
     assert!(worst <= 1.0, "{worst:.3} mm");
 }
 
+/// Issue 10's symmetry criterion at ICT 2500's mouth corners (within 1 mm), which its copy
+/// does not meet yet: the mirrored corner motions of its paired controls differ by up to 5.1 mm
+/// (the zygomatici move the corners 9.2 / 13.7 mm; the README's notes on the corner gap list
+/// what was tried).
+#[test]
+#[ignore = "known gap: ICT dec2500's corners move 9.2 / 13.7 mm at full zygomaticus (see the issue note)"]
+fn ict_2500_left_and_right_mirror_within_a_millimetre_at_the_corners() {
+    let worst = landmark_asymmetry_at_mm(1, &[Landmarks::Corners]);
+    eprintln!("ICT 2500: worst corner asymmetry {worst:.3} mm");
+    assert!(worst <= 1.0, "{worst:.3} mm");
+}
+
 /// The same face rotated arbitrarily, scaled ×10 (so detected in mm instead of cm) and with
 /// its vertex order shuffled gives the same happy field, within 2 % RMS of its largest
 /// displacement.
