@@ -3,7 +3,7 @@
 //! brows' motion, the contour's motion, flipped triangles, and the mouth width change.
 //!
 //! ```text
-//! cargo run --release --example muscle_probe [-- face.obj ...] [-- --only id,id] [-- --max-triangles N] [-- --target N] [-- --offset F] [-- --taper F]
+//! cargo run --release --example muscle_probe [-- face.obj ...] [-- --only id,id] [-- --max-triangles N] [-- --target N] [-- --border-spacing F] [-- --normal-weight F] [-- --offset F] [-- --taper F]
 //! ```
 
 use std::path::Path;
@@ -27,6 +27,14 @@ fn main() -> anyhow::Result<()> {
     // Triangle count of the simplified copy (1500 by default).
     if let Some(w) = args.windows(2).find(|w| w[0] == "--target") {
         params.large_face.target_triangles = w[1].parse()?;
+    }
+    // Spacing of the copy's locked border vertices, in target edge lengths (0.5 by default).
+    if let Some(w) = args.windows(2).find(|w| w[0] == "--border-spacing") {
+        params.large_face.border_spacing = w[1].parse()?;
+    }
+    // Weight of the vertex normals in the simplifier's error (2 by default).
+    if let Some(w) = args.windows(2).find(|w| w[0] == "--normal-weight") {
+        params.large_face.normal_weight = w[1].parse()?;
     }
     // The shell's back-face offset and rim thickness, fraction of the face size (both 0.015 by
     // default).

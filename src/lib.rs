@@ -38,6 +38,7 @@ pub mod measure;
 pub mod open;
 mod pipeline;
 pub mod presets;
+mod relaxation;
 pub mod rolled_in;
 mod solve;
 pub mod untangle;

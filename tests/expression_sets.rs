@@ -376,7 +376,7 @@ fn ict_captured_expressions_cosine_table() {
 /// triangles 21–22 mm from the lips before the lengthened directions were relaxed. Lee Perry-Smith's
 /// `noseSneer*` and `mouthUpperUp*` turned 6 / 11 and 5 / 7 triangles over 13–30 mm from the
 /// lips, at the nasolabial fold and the nose's wing, before the mid and lower face were relaxed
-/// (`pipeline::beyond_lips_and_lids_fixed`; now none there). Regressions: ICT 13k's
+/// (`relaxation::beyond_lips_and_lids_fixed`; now none there). Regressions: ICT 13k's
 /// `blink` (both eyes) turned 86 of 13 120 triangles (0.66 %) before the lids were relaxed
 /// after the lid closure (now 50), and its `jawForward` 142 and then 81 (0.62 %) before the
 /// harmonic patch (now 38); ICT 2500's `mouthPucker` 17 (0.68 %) before its two halves' sum was
@@ -510,7 +510,7 @@ fn named_targets_flip_at_most_half_a_percent_ict_13k() {
 /// halves each relaxed on its own, before the sum was relaxed as one field (now 7); `blink`
 /// turned 19 (0.76 %) before the lids were relaxed after the lid closure (now 9); `mouthClose` turned 3
 /// over at the nostrils, 21–22 mm from the lips, before the lengthened direction of each
-/// response was relaxed too (`pipeline::relax_each_guarded`).
+/// response was relaxed too (`relaxation::relax_each_guarded`).
 #[test]
 fn named_targets_flip_at_most_half_a_percent_ict_2500() {
     named_targets_flip_at_most_half_a_percent(1, &[], &[]);

@@ -96,7 +96,7 @@ fn brow_down_pulls_the_inner_brow_down_and_in(face: usize) {
     // Regression: the corrugator gathered the skin beside the inner canthus and the relaxed
     // frontalis pushed the brow onto it: 4 / 11 / 10 / 28 turned triangles on the four faces,
     // 1–6 of them 12–21 mm from the eye, and a 21 mm spike on MediaPipe, before each corrugator
-    // was relaxed in its browDown combination (`pipeline::relax_brow_lowerers`).
+    // was relaxed in its browDown combination (`relaxation::relax_brow_lowerers`).
     let flips = flipped_triangles(&m.mesh.vertices, &posed, &m.mesh.triangles);
     assert!(
         flips.is_empty(),
