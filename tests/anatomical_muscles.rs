@@ -458,6 +458,35 @@ fn ict_2500_left_and_right_mirror_within_a_millimetre_at_the_brows() {
     assert!(worst <= 1.0, "{worst:.3} mm");
 }
 
+/// A copy of another size must not break the smile. Regression (found this session, not yet
+/// fixed): ICT 2500 simulated on an 1 800-triangle copy (`facebem --target-triangles 1800`, or
+/// `muscle_probe --max-triangles 1000 --target 1800`) gets a strip of sliver triangles along
+/// its upper lip that moves 7–14 mm against the zygomaticus's pull; as the largest motion it sets
+/// the force muscle's scale, and the left corner moves 1.3 mm, nothing else more than 5.4 mm.
+/// None of the solver's diagnostics flag it (amplification 2.2, no self-intersection).
+#[test]
+#[ignore = "known gap: on an 1800-triangle copy ICT 2500's left zygomaticus moves its corner 1.3 mm (see the issue note)"]
+fn zygomaticus_ict_2500_left_on_an_1800_triangle_copy() {
+    let mesh = face_prep::load_face(&support::asset(support::FACES[1])).unwrap();
+    let mut params = PipelineParams::default();
+    params.large_face.target_triangles = 1800;
+    params.large_face.max_triangles = 1000;
+    let m = build_face_model(&mesh, &params, &Control::new()).unwrap();
+    let lm = landmarks(&m);
+    let field = contraction(&m, MuscleKind::ZygomaticusMajorL);
+    let corner_mm = lm.canonical_mm(field[lm.mouth_corner_l as usize]).length();
+    let max = max_mm(&lm, &field);
+    eprintln!("ICT 2500 on 1800 triangles: left corner {corner_mm:.2} mm, largest {max:.2} mm");
+    assert!(
+        (7.0..=15.0).contains(&corner_mm),
+        "corner moves {corner_mm:.2} mm"
+    );
+    assert!(
+        corner_mm >= 0.8 * max,
+        "corner {corner_mm:.2} of {max:.2} mm"
+    );
+}
+
 /// Issue 10's symmetry criterion at ICT 2500's mouth corners (within 1 mm), which its copy
 /// does not meet yet: the mirrored corner motions of its paired controls differ by up to 5.1 mm
 /// (the zygomatici move the corners 9.2 / 13.7 mm; the README's notes on the corner gap list
