@@ -1,7 +1,7 @@
 //! The passes that settle the responses after the transfer: where a response would turn
 //! triangles of the user's mesh over, [`crate::untangle`] relaxes it, region by region and
 //! slider direction by slider direction, with the lid closure ([`crate::lid_closure`]) in
-//! between. The thesis model keeps its responses as solved (only the lid closure runs).
+//! between. The thesis model keeps its responses as solved (only the lid closure's passes run).
 
 use face_prep::{FaceLoops, FaceMesh, FaceRig};
 use glam::DVec3;
@@ -23,7 +23,8 @@ pub(crate) fn settle(
     muscle_ids: &[String],
     displacements: &mut [Vec<DVec3>],
 ) {
-    if rig.params.muscle_model == face_prep::muscle_model::MuscleModel::Anatomical {
+    let anatomical = rig.params.muscle_model == face_prep::muscle_model::MuscleModel::Anatomical;
+    if anatomical {
         relax_each(mesh, rig, &untangle_fixed(mesh, rig), displacements);
     }
     crate::lid_closure::keep_squints_open(rig, mesh, muscle_ids, displacements);
@@ -34,41 +35,39 @@ pub(crate) fn settle(
         muscle_ids,
         displacements,
     );
-    if rig.params.muscle_model == face_prep::muscle_model::MuscleModel::Anatomical {
-        let fixed = closed_lids_fixed(mesh, rig, simplified.map(|s| &s.mesh));
-        relax_each(mesh, rig, &fixed, displacements);
+    if !anatomical {
+        return;
     }
-    if rig.params.muscle_model == face_prep::muscle_model::MuscleModel::Anatomical {
-        relax_sphincter_sum(mesh, rig, muscle_ids, simplified, displacements);
-    }
-    if rig.params.muscle_model == face_prep::muscle_model::MuscleModel::Anatomical {
-        let fixed = beyond_lips_and_lids_fixed(mesh, rig, Forehead::Fixed);
-        relax_each(mesh, rig, &fixed, displacements);
-        relax_each_guarded(mesh, rig, &fixed, Direction::Lengthened, displacements);
-        let forehead_free = beyond_lips_and_lids_fixed(mesh, rig, Forehead::Free);
-        relax_each_guarded(
-            mesh,
-            rig,
-            &forehead_free,
-            Direction::Contraction,
-            displacements,
-        );
-        relax_each_guarded(
-            mesh,
-            rig,
-            &forehead_free,
-            Direction::HalfLengthened,
-            displacements,
-        );
-        relax_each_guarded(
-            mesh,
-            rig,
-            &above_the_eyes_fixed(mesh, rig),
-            Direction::HalfLengthened,
-            displacements,
-        );
-        relax_brow_lowerers(mesh, rig, muscle_ids, displacements);
-    }
+    let lids_closed = closed_lids_fixed(mesh, rig, simplified.map(|s| &s.mesh));
+    relax_each(mesh, rig, &lids_closed, displacements);
+    relax_sphincter_sum(mesh, rig, muscle_ids, &lids_closed, displacements);
+    let fixed = beyond_lips_and_lids_fixed(mesh, rig, Forehead::Fixed);
+    relax_each(mesh, rig, &fixed, displacements);
+    relax_each_guarded(mesh, rig, &fixed, Direction::Lengthened, displacements);
+    let forehead_free = beyond_lips_and_lids_fixed(mesh, rig, Forehead::Free);
+    relax_each_guarded(
+        mesh,
+        rig,
+        &forehead_free,
+        Direction::Contraction,
+        displacements,
+    );
+    relax_each_guarded(
+        mesh,
+        rig,
+        &forehead_free,
+        Direction::HalfLengthened,
+        displacements,
+    );
+    let lids_and_forehead_free = above_the_eyes_fixed(mesh, rig);
+    relax_each_guarded(
+        mesh,
+        rig,
+        &lids_and_forehead_free,
+        Direction::HalfLengthened,
+        displacements,
+    );
+    relax_brow_lowerers(mesh, rig, muscle_ids, displacements);
 }
 
 /// Relaxes every response where it turns triangles over, moving only the vertices not in
@@ -160,13 +159,13 @@ fn relax_each_guarded(
 }
 
 /// `mouthPucker` contracts both halves of the mouth's sphincter at once: their sum is relaxed
-/// as one field ([`crate::untangle::relax_sum`]), with the lips and lids free as in the second
-/// pass (ICT 2500: 17 turned triangles → 11).
+/// as one field ([`crate::untangle::relax_sum`]), moving only the vertices not in `fixed` (the
+/// second pass's: lips and lids free; ICT 2500: 17 turned triangles → 11).
 fn relax_sphincter_sum(
     mesh: &FaceMesh,
     rig: &FaceRig,
     muscle_ids: &[String],
-    simplified: Option<&SimplifiedFace>,
+    fixed: &[bool],
     displacements: &mut [Vec<DVec3>],
 ) {
     let find = |kind: face_prep::MuscleKind| muscle_ids.iter().position(|id| id == kind.id());
@@ -176,11 +175,10 @@ fn relax_sphincter_sum(
     ) else {
         return;
     };
-    let fixed = closed_lids_fixed(mesh, rig, simplified.map(|s| &s.mesh));
     let patch_radius = crate::untangle::PATCH_MM / rig.mm_per_unit();
     let (first, second) = displacements.split_at_mut(upper.max(lower));
     let (a, b) = (&mut first[upper.min(lower)], &mut second[0]);
-    crate::untangle::relax_sum(&mesh.vertices, &mesh.triangles, a, b, &fixed, patch_radius);
+    crate::untangle::relax_sum(&mesh.vertices, &mesh.triangles, a, b, fixed, patch_radius);
 }
 
 /// Vertices [`crate::untangle::relax_inversions`] leaves as solved: everything farther than
