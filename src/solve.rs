@@ -127,20 +127,21 @@ pub(crate) fn solve_rig(
             bem_core::element_to_vertex(&mesh, u)
         }
     };
-    for (k, field) in element.iter_mut().enumerate() {
-        if let Some(target) = rig.force_target(k) {
-            let at_vertices = to_vertex(field)?;
-            let factor =
-                face_prep::force_controls::scale_to_target(&at_vertices[..front_vertices], target);
-            for u in field.iter_mut() {
-                *u *= factor;
-            }
-        }
-    }
     let mut vertex: Vec<Vec<DVec3>> = element
         .iter()
         .map(|u| to_vertex(u))
         .collect::<Result<_, _>>()?;
+    // Both recoveries commute with a positive scale, so the vertex values are scaled with the
+    // element values instead of being recovered again.
+    for (k, (field, at_vertices)) in element.iter_mut().zip(&mut vertex).enumerate() {
+        if let Some(target) = rig.force_target(k) {
+            let factor =
+                face_prep::force_controls::scale_to_target(&at_vertices[..front_vertices], target);
+            for u in field.iter_mut().chain(at_vertices.iter_mut()) {
+                *u *= factor;
+            }
+        }
+    }
     if rig.params.muscle_model == MuscleModel::Anatomical {
         // A vertex of a fixed (skull) element is on bone: the outer contour on the fixed rim,
         // so a face's cut line stays put. (The thesis model keeps the plain element average,
