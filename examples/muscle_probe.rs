@@ -3,7 +3,7 @@
 //! brows' motion, the contour's motion, flipped triangles, and the mouth width change.
 //!
 //! ```text
-//! cargo run --release --example muscle_probe [-- face.obj ...] [-- --only id,id] [-- --max-triangles N] [-- --target N] [-- --border-spacing F] [-- --normal-weight F] [-- --offset F] [-- --taper F]
+//! cargo run --release --example muscle_probe [-- face.obj ...] [-- --only id,id] [-- --max-triangles N] [-- --target N] [-- --border-spacing F] [-- --normal-weight F] [-- --copy remesh] [-- --offset F] [-- --taper F]
 //! ```
 
 use std::path::Path;
@@ -31,6 +31,11 @@ fn main() -> anyhow::Result<()> {
     // Spacing of the copy's locked border vertices, in target edge lengths (0.5 by default).
     if let Some(w) = args.windows(2).find(|w| w[0] == "--border-spacing") {
         params.large_face.border_spacing = w[1].parse()?;
+    }
+    // How the copy is made: collapse (default) or remesh.
+    if let Some(w) = args.windows(2).find(|w| w[0] == "--copy") {
+        params.large_face.method = facebem::large_face::CopyMethod::parse(&w[1])
+            .ok_or_else(|| anyhow::anyhow!("--copy takes collapse or remesh"))?;
     }
     // Weight of the vertex normals in the simplifier's error (2 by default).
     if let Some(w) = args.windows(2).find(|w| w[0] == "--normal-weight") {

@@ -37,6 +37,12 @@ pub enum SimplifyPath {
     Canonical,
     /// The face has no canonical frame (not four loops, say): simplified as written.
     AsWritten,
+    /// Remeshed as the left half of the mirror-symmetric face, mirrored.
+    RemeshedMirrored,
+    /// Remeshed in the face's canonical frame and order (not mirror-symmetric).
+    Remeshed,
+    /// Remeshed as written, without a canonical frame.
+    RemeshedAsWritten,
 }
 
 impl SimplifyPath {
@@ -51,6 +57,11 @@ impl SimplifyPath {
             SimplifyPath::Mirrored => "as a mirrored half of the mirror-symmetric face",
             SimplifyPath::Canonical => "in the face's canonical frame and order",
             SimplifyPath::AsWritten => "as written, without a canonical frame",
+            SimplifyPath::RemeshedMirrored => {
+                "by remeshing the left half of the mirror-symmetric face and mirroring it"
+            }
+            SimplifyPath::Remeshed => "by remeshing in the face's canonical frame and order",
+            SimplifyPath::RemeshedAsWritten => "by remeshing as written, without a canonical frame",
         }
     }
 }
@@ -150,17 +161,23 @@ pub fn simplify_face_keeping(
 
 /// A face in its canonical frame: positions in interocular units on the 2⁻²⁰ grid, vertices
 /// sorted by (y, x, z), each triangle rotated to start at its smallest index, triangles sorted.
-struct Canonical {
-    positions: Vec<DVec3>,
-    triangles: Vec<[u32; 3]>,
+pub(crate) struct Canonical {
+    pub(crate) positions: Vec<DVec3>,
+    pub(crate) triangles: Vec<[u32; 3]>,
     /// Input vertex of each canonical vertex.
-    input_vertex: Vec<u32>,
+    pub(crate) input_vertex: Vec<u32>,
     /// Number of boundary loops (four for a face).
-    loop_count: usize,
+    pub(crate) loop_count: usize,
+    /// The mouth loop (canonical vertices).
+    pub(crate) mouth: Vec<u32>,
+    /// The eye loops (canonical vertices).
+    pub(crate) eyes: [Vec<u32>; 2],
+    /// Input frame from canonical interocular units.
+    pub(crate) input_from_grid: glam::DAffine3,
 }
 
 impl Canonical {
-    fn of(vertices: &[DVec3], triangles: &[[u32; 3]]) -> Option<Canonical> {
+    pub(crate) fn of(vertices: &[DVec3], triangles: &[[u32; 3]]) -> Option<Canonical> {
         let loops = face_prep::topology::validate(vertices, triangles).ok()?;
         let (canonical_from_input, face_loops) =
             face_prep::orient::canonical_frame(vertices, triangles, &loops).ok()?;
@@ -203,6 +220,15 @@ impl Canonical {
             triangles: tris,
             input_vertex,
             loop_count: loops.len(),
+            mouth: face_loops
+                .mouth
+                .iter()
+                .map(|&v| canonical_of[v as usize])
+                .collect(),
+            eyes: [&face_loops.eye_l, &face_loops.eye_r]
+                .map(|lp| lp.iter().map(|&v| canonical_of[v as usize]).collect()),
+            input_from_grid: canonical_from_input.inverse()
+                * glam::DAffine3::from_scale(glam::DVec3::splat(iod)),
         })
     }
 }
@@ -329,14 +355,20 @@ fn midline_chords(half: &Simplified, on_midline: &dyn Fn(u32) -> bool) -> Vec<u3
     ends
 }
 
-/// Simplifies the left half of a mirror-symmetric canonical face and mirrors it. `None` when the
-/// half or the glued result is not a valid surface with the face's loop count.
-fn simplify_mirrored(
-    canon: &Canonical,
-    mirror: &[u32],
-    params: &LargeFaceParams,
-    kept: &[bool],
-) -> Option<Simplified> {
+/// The left half of a mirror-symmetric canonical face, ready to be reduced and mirrored.
+pub(crate) struct LeftHalf {
+    /// The half, its vertices mapped to the canonical face's.
+    pub(crate) half: Simplified,
+    /// Per half vertex: kept (it or its mirror image is flagged in `kept`).
+    pub(crate) anchors: Vec<bool>,
+    /// Per half vertex: where the midline meets a contour (a border edge of the half to a
+    /// vertex off the midline); moving them would pull the cut off the midplane.
+    pub(crate) locks: Vec<bool>,
+}
+
+/// The left half of `canon` (mirror images `mirror`, kept vertices `kept`); `None` when it is
+/// not a valid surface.
+pub(crate) fn left_half(canon: &Canonical, mirror: &[u32], kept: &[bool]) -> Option<LeftHalf> {
     let whole = Simplified::whole(&canon.positions, &canon.triangles);
     let left: Vec<[u32; 3]> = canon
         .triangles
@@ -346,8 +378,6 @@ fn simplify_mirrored(
         .collect();
     let half = whole.subset(&left);
     let half_loops = face_prep::topology::validate(&half.vertices, &half.triangles).ok()?;
-    // Lock the midline vertices where the midline meets a contour (a border edge of the half to
-    // a vertex off the midline): collapsing them would pull the cut off the midplane.
     let on_midline = |h: u32| {
         let c = half.original_vertex[h as usize];
         mirror[c as usize] == c
@@ -370,6 +400,31 @@ fn simplify_mirrored(
             }
         }
     }
+    Some(LeftHalf {
+        half,
+        anchors,
+        locks,
+    })
+}
+
+/// Simplifies the left half of a mirror-symmetric canonical face and mirrors it. `None` when the
+/// half or the glued result is not a valid surface with the face's loop count.
+fn simplify_mirrored(
+    canon: &Canonical,
+    mirror: &[u32],
+    params: &LargeFaceParams,
+    kept: &[bool],
+) -> Option<Simplified> {
+    let whole = Simplified::whole(&canon.positions, &canon.triangles);
+    let LeftHalf {
+        half,
+        anchors,
+        mut locks,
+    } = left_half(canon, mirror, kept)?;
+    let on_midline = |h: u32| {
+        let c = half.original_vertex[h as usize];
+        mirror[c as usize] == c
+    };
     let half_params = LargeFaceParams {
         target_triangles: (params.target_triangles / 2).max(16),
         ..params.clone()

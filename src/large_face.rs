@@ -44,6 +44,38 @@ pub struct LargeFaceParams {
     /// own motion over targets 1400/1500/1600 × offsets ±10 %; 1.0–1.1 resampled at 0.5.
     /// Default 0.5.
     pub border_spacing: f64,
+    /// How the copy is made: edge collapses that keep input vertices (default), or isotropic
+    /// remeshing ([`crate::face_simplify::remesh_face_keeping`]).
+    #[serde(default)]
+    pub method: CopyMethod,
+}
+
+/// How a large face's simulated copy is made ([`LargeFaceParams::method`]).
+///
+/// ```
+/// use facebem::large_face::CopyMethod;
+/// assert_eq!(CopyMethod::parse("remesh"), Some(CopyMethod::Remesh));
+/// assert_eq!(CopyMethod::default(), CopyMethod::Collapse);
+/// assert_eq!(CopyMethod::parse("decimate"), None);
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub enum CopyMethod {
+    /// meshoptimizer's edge collapses; the copy's vertices are input vertices.
+    #[default]
+    Collapse,
+    /// Isotropic remeshing, finer at the mouth and the eyes ([`crate::remesh`]).
+    Remesh,
+}
+
+impl CopyMethod {
+    /// `collapse` or `remesh`.
+    pub fn parse(s: &str) -> Option<CopyMethod> {
+        match s {
+            "collapse" => Some(CopyMethod::Collapse),
+            "remesh" => Some(CopyMethod::Remesh),
+            _ => None,
+        }
+    }
 }
 
 impl Default for LargeFaceParams {
@@ -56,6 +88,7 @@ impl Default for LargeFaceParams {
             max_error: 1.0,
             normal_weight: 2.0,
             border_spacing: 0.5,
+            method: CopyMethod::Collapse,
         }
     }
 }
@@ -79,17 +112,23 @@ pub enum SimplifyError {
     /// meshoptimizer returned no triangles.
     #[error("simplification of {0} triangles produced an empty mesh")]
     Empty(usize),
+    /// Remeshing failed ([`CopyMethod::Remesh`]).
+    #[error(transparent)]
+    Remesh(#[from] crate::remesh::RemeshError),
 }
 
 /// A reduced copy of a mesh (simplified and/or with rolled-in parts peeled off); its vertices
-/// are a subset of the original ones.
+/// are a subset of the original ones, except for a remeshed copy ([`CopyMethod::Remesh`]),
+/// whose vertices are new points of the original surface.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Simplified {
-    /// Vertex positions (copies of original positions).
+    /// Vertex positions (copies of original positions; points of the original surface for a
+    /// remeshed copy).
     pub vertices: Vec<DVec3>,
     /// Triangles indexing [`Simplified::vertices`].
     pub triangles: Vec<[u32; 3]>,
-    /// For each simplified vertex, its index in the original mesh.
+    /// For each simplified vertex, its index in the original mesh (for a remeshed copy: the
+    /// original vertex closest to it, the vertex itself for a kept one).
     pub original_vertex: Vec<u32>,
 }
 

@@ -238,7 +238,8 @@ pub struct PreparedRig {
     /// The front mesh that is simulated (the input mesh, or its reduced copy).
     pub simulated: FaceMesh,
     /// The reduced copy (rolled-in parts peeled off, and/or simplified for a large face), its
-    /// vertices a subset of the input's; `None` when the whole input is simulated.
+    /// vertices a subset of the input's (new points of its surface for a remeshed copy);
+    /// `None` when the whole input is simulated.
     pub simplified: Option<Simplified>,
     /// The rig of [`PreparedRig::simulated`] (with `params.muscles` if given).
     pub rig: FaceRig,
@@ -274,12 +275,11 @@ pub fn prepare(mesh: &FaceMesh, params: &PipelineParams) -> Result<PreparedRig, 
     let mut simplify_path = None;
     let reduced = if base.triangles.len() > params.large_face.max_triangles {
         let keep = kept_mouth_corners(mesh, base);
-        let (s, path) = crate::face_simplify::simplify_face_keeping(
-            &base.vertices,
-            &base.triangles,
-            &params.large_face,
-            &keep,
-        )?;
+        let copy = match params.large_face.method {
+            crate::large_face::CopyMethod::Collapse => crate::face_simplify::simplify_face_keeping,
+            crate::large_face::CopyMethod::Remesh => crate::face_remesh::remesh_face_keeping,
+        };
+        let (s, path) = copy(&base.vertices, &base.triangles, &params.large_face, &keep)?;
         simplify_path = Some(path);
         Some(Simplified {
             original_vertex: s

@@ -383,7 +383,11 @@ fn landmark_asymmetry_mm(face: usize) -> f64 {
 
 /// [`landmark_asymmetry_mm`] at the given landmarks only.
 fn landmark_asymmetry_at_mm(face: usize, which: &[Landmarks]) -> f64 {
-    let m = model(face);
+    landmark_asymmetry_of(model(face), face, which)
+}
+
+/// [`landmark_asymmetry_at_mm`] of a model (`face` labels the report).
+fn landmark_asymmetry_of(m: &FaceModel, face: usize, which: &[Landmarks]) -> f64 {
     let lm = landmarks(m);
     let all = [
         (
@@ -815,4 +819,52 @@ fn ict_2500_and_13k_agree_at_the_corners() {
         Landmarks::Corners,
         "ICT 2500 / 13k",
     );
+}
+
+/// ICT 2500 simulated on a remeshed copy (`--copy remesh`, [`facebem::large_face::CopyMethod`])
+/// of `target` triangles.
+fn remeshed_ict_2500(target: usize) -> FaceModel {
+    let mesh = face_prep::load_face(&support::asset(support::FACES[1])).unwrap();
+    let mut params = PipelineParams::default();
+    params.large_face.method = facebem::large_face::CopyMethod::Remesh;
+    params.large_face.target_triangles = target;
+    params.large_face.max_triangles = target.min(1500);
+    build_face_model(&mesh, &params, &Control::new()).unwrap()
+}
+
+/// The 1 800-triangle failure above, on a remeshed copy: no slivers, and the left smile keeps
+/// its corner (the collapse copy: 1.3 mm).
+#[test]
+fn remeshed_ict_2500_on_an_1800_triangle_copy_keeps_its_smile() {
+    let m = remeshed_ict_2500(1800);
+    let lm = landmarks(&m);
+    for kind in [MuscleKind::ZygomaticusMajorL, MuscleKind::ZygomaticusMajorR] {
+        let field = contraction(&m, kind);
+        let corner = if kind == MuscleKind::ZygomaticusMajorL {
+            lm.mouth_corner_l
+        } else {
+            lm.mouth_corner_r
+        };
+        let corner_mm = lm.canonical_mm(field[corner as usize]).length();
+        let max = max_mm(&lm, &field);
+        eprintln!(
+            "remeshed ICT 2500 on 1800 triangles, {}: corner {corner_mm:.2} mm, largest {max:.2} mm",
+            kind.id()
+        );
+        assert!(
+            (7.0..=15.0).contains(&corner_mm),
+            "{}: corner moves {corner_mm:.2} mm",
+            kind.id()
+        );
+    }
+}
+
+/// ICT 2500's corners mirror on its remeshed copy (the collapse copy: 5.1 mm apart).
+#[test]
+fn remeshed_ict_2500_mirrors_at_the_corners() {
+    let m = remeshed_ict_2500(1500);
+    let worst = landmark_asymmetry_of(&m, 1, &[Landmarks::Corners]);
+    let brows = landmark_asymmetry_of(&m, 1, &[Landmarks::Brows]);
+    eprintln!("remeshed ICT 2500: worst corner asymmetry {worst:.3} mm, brows {brows:.3} mm");
+    assert!(worst <= 1.0, "{worst:.3} mm");
 }

@@ -419,3 +419,40 @@ fn rig_reports_how_a_large_face_was_simplified() {
         assert!(model.report.simplify_path.is_some());
     }
 }
+
+/// `--copy remesh` simulates a large face on a remeshed copy and says so; an unknown method is
+/// refused with a one-line error naming it.
+#[test]
+fn rig_copy_method_remesh_and_a_bad_method() {
+    let dir = tempfile::tempdir().unwrap();
+    let rig = dir.path().join("ict.rig");
+    let face = support::asset("ict_narrow_face_4loop.obj");
+    let out = facebem(&[
+        "rig",
+        s(&face),
+        "-o",
+        s(&rig),
+        "--target-triangles",
+        "600",
+        "--copy",
+        "remesh",
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert!(
+        stdout(&out).contains("simplified by remeshing the left half of the mirror-symmetric face"),
+        "{}",
+        stdout(&out)
+    );
+    let model = facebem::cache::load(&rig).unwrap();
+    assert_eq!(
+        model.report.simplify_path,
+        Some(facebem::face_simplify::SimplifyPath::RemeshedMirrored)
+    );
+    let bad = facebem(&["rig", s(&face), "-o", s(&rig), "--copy", "decimate"]);
+    assert!(!bad.status.success());
+    assert!(
+        stderr(&bad).contains("unknown copy method \"decimate\""),
+        "{}",
+        stderr(&bad)
+    );
+}

@@ -5,8 +5,9 @@
 mod support;
 
 use face_prep::FaceMesh;
+use facebem::face_remesh::remesh_face_keeping;
 use facebem::face_simplify::{SimplifyPath, mirror_map, simplify_face};
-use facebem::large_face::LargeFaceParams;
+use facebem::large_face::{CopyMethod, LargeFaceParams};
 use facebem::{PipelineParams, prepare};
 use glam::DVec3;
 use std::collections::BTreeSet;
@@ -175,4 +176,89 @@ fn the_copy_keeps_the_mouth_corners() {
             );
         }
     }
+}
+
+/// The remeshed copy ([`CopyMethod::Remesh`]) of each bundled face: mirrored on the two
+/// symmetric meshes, in canonical order on the others, four loops, about the target count.
+#[test]
+fn remeshed_copies_keep_four_loops_and_their_size() {
+    let params = LargeFaceParams {
+        target_triangles: 600,
+        method: CopyMethod::Remesh,
+        ..LargeFaceParams::default()
+    };
+    for (name, path) in [
+        (
+            "mediapipe_canonical_4loop.obj",
+            SimplifyPath::RemeshedMirrored,
+        ),
+        ("ict_narrow_face_4loop.obj", SimplifyPath::RemeshedMirrored),
+        ("ict_narrow_face_dec2500_4loop.obj", SimplifyPath::Remeshed),
+        ("leeperrysmith_face_open_4loop.obj", SimplifyPath::Remeshed),
+    ] {
+        let mesh = load(name);
+        let (s, got) = remesh_face_keeping(&mesh.vertices, &mesh.triangles, &params, &[]).unwrap();
+        assert_eq!(got, path, "{name}");
+        let loops = face_prep::topology::validate(&s.vertices, &s.triangles).unwrap();
+        assert_eq!(loops.len(), 4, "{name}: the copy has {} loops", loops.len());
+        let n = s.triangles.len();
+        eprintln!("{name}: {n} triangles");
+        assert!((450..=780).contains(&n), "{name}: {n} triangles for 600");
+    }
+}
+
+/// The remeshed copy of ICT 2500 written differently (rotated, scaled ×10, translated, vertex
+/// and triangle order shuffled) is the same copy, moved by the same transform.
+#[test]
+fn remeshed_copy_is_invariant_to_how_the_file_is_written() {
+    let mesh = load("ict_narrow_face_dec2500_4loop.obj");
+    let support::Rewritten {
+        mesh: other,
+        input_from_original,
+        ..
+    } = support::rewritten(&mesh);
+    let mut params = PipelineParams::default();
+    params.large_face.method = CopyMethod::Remesh;
+    let copy = |m: &FaceMesh| prepare(m, &params).unwrap().simplified.unwrap();
+    let (a, b) = (copy(&mesh), copy(&other));
+    assert_eq!(a.triangles.len(), b.triangles.len());
+    let original_from_input = input_from_original.inverse();
+    let size = 10.0; // the face is about 10 units (cm) across
+    let mut worst: f64 = 0.0;
+    for (t, u) in a.triangles.iter().zip(&b.triangles) {
+        for k in 0..3 {
+            let p = a.vertices[t[k] as usize];
+            let q = original_from_input.transform_point3(b.vertices[u[k] as usize]);
+            worst = worst.max(p.distance(q));
+        }
+    }
+    eprintln!("worst vertex difference {worst:.2e}");
+    assert!(worst < 1e-6 * size, "the copies differ by {worst}");
+}
+
+/// The remeshed copy of a mirror-symmetric face is mirror-symmetric (ICT 13k).
+#[test]
+fn remeshed_copy_of_a_symmetric_face_is_symmetric() {
+    let mesh = load("ict_narrow_face_4loop.obj");
+    let mut params = PipelineParams::default();
+    params.large_face.method = CopyMethod::Remesh;
+    let prepared = prepare(&mesh, &params).unwrap();
+    assert_eq!(prepared.simplify_path, Some(SimplifyPath::RemeshedMirrored));
+    let s = prepared.simplified.unwrap();
+    let frame = prepared.rig.canonical_from_input;
+    let loops = face_prep::topology::validate(&s.vertices, &s.triangles).unwrap();
+    let (_, face_loops) =
+        face_prep::orient::canonical_frame(&s.vertices, &s.triangles, &loops).unwrap();
+    let iod = face_prep::orient::loop_centroid(&s.vertices, &face_loops.eye_l).distance(
+        face_prep::orient::loop_centroid(&s.vertices, &face_loops.eye_r),
+    );
+    let canonical: Vec<DVec3> = s
+        .vertices
+        .iter()
+        .map(|&p| frame.transform_point3(p) / iod)
+        .collect();
+    assert!(
+        mirror_map(&canonical, &s.triangles).is_some(),
+        "the remeshed copy is not mirror-symmetric"
+    );
 }

@@ -145,6 +145,11 @@ struct SolverArgs {
     /// Triangle count of the simplified copy.
     #[arg(long, default_value_t = LargeFaceParams::default().target_triangles, allow_negative_numbers = true)]
     target_triangles: usize,
+    /// How a large face's copy is made: `collapse` (edge collapses that keep input vertices)
+    /// or `remesh` (near-equilateral triangles, finer at the mouth and eyes, mirrored on a
+    /// mirror-symmetric face).
+    #[arg(long, default_value = "collapse", value_parser = parse_copy_method)]
+    copy: facebem::large_face::CopyMethod,
     /// Back-face offset of the shell, as a fraction of the face size.
     #[arg(long, default_value_t = RigParams::default().offset, allow_negative_numbers = true)]
     offset: f64,
@@ -163,6 +168,11 @@ struct SolverArgs {
     /// in mm) or `thesis` (the 2002 thesis's chain rule, reproduced exactly).
     #[arg(long, default_value = "anatomical", value_parser = parse_muscle_model)]
     muscle_model: face_prep::muscle_model::MuscleModel,
+}
+
+fn parse_copy_method(s: &str) -> Result<facebem::large_face::CopyMethod, String> {
+    facebem::large_face::CopyMethod::parse(s)
+        .ok_or_else(|| format!("unknown copy method {s:?}: use collapse or remesh"))
 }
 
 fn parse_muscle_model(s: &str) -> Result<face_prep::muscle_model::MuscleModel, String> {
@@ -331,6 +341,7 @@ fn rig(face: &Path, output: &Path, muscles: Option<&Path>, solver: &SolverArgs) 
         large_face: LargeFaceParams {
             max_triangles: solver.max_triangles,
             target_triangles: solver.target_triangles,
+            method: solver.copy,
             ..LargeFaceParams::default()
         },
         ..PipelineParams::default()
