@@ -62,13 +62,18 @@ fn main() -> anyhow::Result<()> {
         let t = std::time::Instant::now();
         let model = build_face_model(&mesh, &params, &Control::new())?;
         println!(
-            "{}: {} controls, {:.1} s, {} triangles simulated ({:?})",
+            "{}: {} controls, {:.1} s, {} triangles simulated ({:?}), force peak ratio {:.2} ({})",
             face.display(),
             model.basis.muscle_ids.len(),
             t.elapsed().as_secs_f64(),
             model.report.simulated_triangles,
-            model.report.simplify_path
+            model.report.simplify_path,
+            model.report.force_peak_ratio,
+            model.report.force_peak_control
         );
+        for w in model.report.warnings() {
+            println!("  warning: {w}");
+        }
         let lm = FaceLandmarks::of(&model).ok_or_else(|| anyhow::anyhow!("no landmarks"))?;
         let c = |v: u32| lm.canonical_mm(model.mesh.vertices[v as usize] - DVec3::ZERO);
         let mouth_c = (c(lm.mouth_corner_l) + c(lm.mouth_corner_r)) * 0.5;

@@ -50,5 +50,6 @@ pub use basis::{MuscleBasis, PoseError};
 pub use control::{Control, Progress, Stage};
 pub use pipeline::{
     FaceModel, PipelineError, PipelineParams, PrecomputeReport, PreparedRig,
-    SUSPICIOUS_AMPLIFICATION, SimplifiedFace, build_face_model, prep_rig, prepare,
+    SUSPICIOUS_AMPLIFICATION, SUSPICIOUS_FORCE_PEAK, SimplifiedFace, build_face_model, prep_rig,
+    prepare,
 };

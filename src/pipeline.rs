@@ -75,6 +75,14 @@ pub struct PrecomputeReport {
     /// physical (e.g. front and back surfaces nearly coincident: MediaPipe with offset 0.0005
     /// reaches 60; the ICT faces simulated with their rolled-in eyelids and lips, 3 to 1751).
     pub response_amplification: f64,
+    /// Largest ratio, over the force-driven band muscles, of a muscle's largest front motion (the
+    /// target its response is scaled to) to the mean motion of the tissue it pulls (traction-
+    /// weighted, along the pull). Healthy rigs stay below [`SUSPICIOUS_FORCE_PEAK`]; far above
+    /// it a few elements (a strip of slivers, a flap at the lips' knife edge) move much more
+    /// than the muscle's own tissue and set its scale, so the rest of the expression is weak.
+    pub force_peak_ratio: f64,
+    /// The control of [`PrecomputeReport::force_peak_ratio`] (empty when there is none).
+    pub force_peak_control: String,
     /// bem-core's estimate of the condition number of the BEM system (columns scaled to unit
     /// 1-norm, [`bem_core::DenseLu::condition_estimate`]); solves above
     /// [`bem_core::DEFAULT_MAX_CONDITION`] are refused.
@@ -93,6 +101,12 @@ pub struct PrecomputeReport {
     /// Seconds spent mapping element results to the user's vertices.
     pub transfer_seconds: f64,
 }
+
+/// [`PrecomputeReport::force_peak_ratio`] above this flags a force-driven response whose scale a
+/// few elements set. Measured: 0.5-2.6 on the four bundled faces at default settings (every
+/// band muscle); ICT 2500 on an 1800-triangle copy, whose upper-lip slivers moved 7-14 mm
+/// against the pull, 11 for its left zygomaticus and 15 for its left levator anguli oris.
+pub const SUSPICIOUS_FORCE_PEAK: f64 = 4.0;
 
 /// [`PrecomputeReport::response_amplification`] above this flags a near-singular, unphysical
 /// solve (healthy rigs measured 1 to 3.2; broken ones 8 to 5000).
@@ -114,6 +128,9 @@ impl PrecomputeReport {
     /// report.quadrature_unconverged = 12;
     /// report.quadrature_worst_error = 0.03;
     /// assert!(report.warnings()[2].contains("12 BEM element pairs"));
+    /// report.force_peak_ratio = 11.0;
+    /// report.force_peak_control = "zygomaticus_major_l".into();
+    /// assert!(report.warnings()[2].starts_with("zygomaticus_major_l's largest motion is 11.0 times"));
     /// ```
     pub fn warnings(&self) -> Vec<String> {
         let mut out = Vec::new();
@@ -131,6 +148,15 @@ impl PrecomputeReport {
                  near-singular, e.g. front and back of the shell nearly touch (check the \
                  shell offset)",
                 self.response_amplification
+            ));
+        }
+        if self.force_peak_ratio > SUSPICIOUS_FORCE_PEAK {
+            out.push(format!(
+                "{}'s largest motion is {:.1} times the mean motion of the tissue it pulls \
+                 (healthy rigs: below {SUSPICIOUS_FORCE_PEAK:.0}): a few elements, e.g. slivers \
+                 or a flap at the lips, set its scale and the rest of its expression is weak; \
+                 try another --target-triangles or --copy remesh",
+                self.force_peak_control, self.force_peak_ratio
             ));
         }
         if self.quadrature_unconverged > 0 {
@@ -454,8 +480,17 @@ pub fn build_face_model(
             }
         })
         .fold(0.0, f64::max);
+    let (force_peak_control, force_peak_ratio) = solved
+        .force_peak_ratio
+        .iter()
+        .zip(&basis.muscle_ids)
+        .filter_map(|(r, id)| r.map(|r| (id.clone(), r)))
+        .max_by(|a, b| a.1.total_cmp(&b.1))
+        .unwrap_or_default();
     let report = PrecomputeReport {
         input_triangles: mesh.triangles.len(),
+        force_peak_ratio,
+        force_peak_control,
         simulated_triangles: simulated.triangles.len(),
         simplify_path,
         shell_elements: rig.shell.triangles.len(),

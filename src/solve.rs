@@ -4,6 +4,7 @@ use std::sync::atomic::AtomicBool;
 
 use bem_core::{ElementKind, Material, QuadratureParams, ResponseBasis, SolveParams, SurfaceMesh};
 use face_prep::FaceRig;
+use face_prep::muscle_kind::Generator;
 use face_prep::muscle_model::MuscleModel;
 use glam::DVec3;
 
@@ -20,6 +21,10 @@ pub(crate) struct Solved {
     pub vertex: Vec<Vec<DVec3>>,
     /// What bem-core measured about the solve (condition estimate, quadrature accuracy).
     pub report: bem_core::SolveReport,
+    /// Per control: for a force-driven band muscle, its largest front displacement (its target) over
+    /// the traction-weighted mean displacement of the elements it loads
+    /// ([`force_peak_ratio`]); `None` for the others.
+    pub force_peak_ratio: Vec<Option<f64>>,
 }
 
 /// Solves the rig's BEM problem: skull elements fixed at zero, every element of a
@@ -133,12 +138,22 @@ pub(crate) fn solve_rig(
         .collect::<Result<_, _>>()?;
     // Both recoveries commute with a positive scale, so the vertex values are scaled with the
     // element values instead of being recovered again.
+    let mut peak_ratio = vec![None; element.len()];
     for (k, (field, at_vertices)) in element.iter_mut().zip(&mut vertex).enumerate() {
         if let Some(target) = rig.force_target(k) {
             let factor =
                 face_prep::force_controls::scale_to_target(&at_vertices[..front_vertices], target);
             for u in field.iter_mut().chain(at_vertices.iter_mut()) {
                 *u *= factor;
+            }
+            // Band muscles only: a sphincter's ring pulls toward the mouth's centre from every
+            // side, so its tissue's mean motion along the pull is small by construction (2.2-4.3
+            // times its largest motion on the bundled faces), and the cheek puff is a pressure.
+            let band = rig.muscles[k]
+                .kind
+                .is_some_and(|kind| matches!(kind.generator(), Generator::Force(_)));
+            if band {
+                peak_ratio[k] = Some(force_peak_ratio(&mesh, &groups[k], field, target));
             }
         }
     }
@@ -165,5 +180,34 @@ pub(crate) fn solve_rig(
         element,
         vertex,
         report,
+        force_peak_ratio: peak_ratio,
     })
+}
+
+/// How far a force-driven response's largest motion `peak` stands out from the motion of the
+/// tissue the force pulls: `peak` over the traction-weighted mean displacement along the pull,
+/// Σ aₑ tₑ·uₑ / Σ aₑ |tₑ| over the loaded elements (`loads`: element and traction; `field`:
+/// element displacements; aₑ the element areas). About 1–2 when the muscle's own tissue moves
+/// as far as anything; large when a few elements elsewhere (a sliver strip, a flap at the lips'
+/// knife edge) move far more and, as the largest motion, set the response's scale. Infinite
+/// when the loaded tissue moves against its pull on average.
+pub(crate) fn force_peak_ratio(
+    mesh: &SurfaceMesh,
+    loads: &[(usize, DVec3)],
+    field: &[DVec3],
+    peak: f64,
+) -> f64 {
+    let (mut along, mut weight) = (0.0, 0.0);
+    for &(e, t) in loads {
+        let (Some(u), a) = (field.get(e), mesh.area(e)) else {
+            continue;
+        };
+        along += a * t.dot(*u);
+        weight += a * t.length();
+    }
+    if weight > 0.0 && along > 0.0 {
+        peak / (along / weight)
+    } else {
+        f64::INFINITY
+    }
 }

@@ -36,8 +36,9 @@ pub const MAGIC: [u8; 8] = *b"FACEBEM\x1a";
 /// vertices relaxed after the lid closure; 19: the lids relaxed after the lid closure; 20: turned
 /// patches smoothed (the third stage) and `mouthPucker`'s two sphincter halves relaxed as a sum; 21: the mid and lower face
 /// relaxed beyond the lips and lids; 22: each corrugator relaxed in its `browDown*`
-/// combination; 23: the mid and lower face relaxed for the lengthened direction too; 25: `LargeFaceParams::method`, remeshed copies).
-pub const FORMAT_VERSION: u32 = 25;
+/// combination; 23: the mid and lower face relaxed for the lengthened direction too; 25: `LargeFaceParams::method`, remeshed copies; 26:
+/// `PrecomputeReport::force_peak_ratio`).
+pub const FORMAT_VERSION: u32 = 26;
 /// Size of the fixed header in bytes.
 pub const HEADER_LEN: usize = 8 + 4 + 32 + 32 + 8 + 32;
 
