@@ -97,8 +97,15 @@ pub(crate) fn solve_rig(
         cancel: Some(flag),
         progress: Some(&progress),
     };
+    // The thesis model reproduces its basis bit for bit: f64 LU. The anatomical model solves
+    // in mixed precision (the LU in f32, refined to f64 accuracy; bem_core::MixedLu).
+    let precision = match rig.params.muscle_model {
+        MuscleModel::Thesis => bem_core::Precision::Double,
+        MuscleModel::Anatomical => bem_core::Precision::Mixed,
+    };
     let params = SolveParams {
         quadrature,
+        precision,
         ..SolveParams::default()
     };
     let basis =

@@ -19,8 +19,8 @@ use crate::column::{assemble_column, block_times};
 use crate::kernels::{Block, KernelConstants};
 use crate::quadrature::ElementQuad;
 use crate::{
-    BemError, Control, ElementKind, Loads, Material, MemoryEstimate, SolveParams, Stage,
-    SurfaceMesh, tangent_frame,
+    BemError, Control, ElementKind, Loads, MIXED_MIN_UNKNOWNS, Material, MemoryEstimate, Precision,
+    SolveParams, Stage, SurfaceMesh, tangent_frame,
 };
 
 /// What to do with a problem that prescribes no displacement anywhere (rigid-body modes).
@@ -58,6 +58,9 @@ pub struct LinearSystem {
     pub max_condition: f64,
     /// Quadrature accuracy of the assembly.
     pub quadrature: AssemblyReport,
+    /// Precision of the LU ([`SolveParams::precision`], or [`Precision::Double`] where the
+    /// mixed solve's f32 copy of K would not fit the memory budget).
+    pub precision: Precision,
 }
 
 /// Number of contiguous column ranges whose row sums are accumulated separately during assembly
@@ -301,7 +304,20 @@ impl LinearSystem {
         let size = dof + if gauge_fixed { 6 } else { 0 };
         let rhs_count = loads.rhs_count();
         let threads = rayon::current_num_threads().max(1);
-        MemoryEstimate::new(n, size, rhs_count, threads).check(params.memory_budget_bytes)?;
+        // The mixed-precision LU needs an f32 copy of K besides K; where that does not fit the
+        // budget, or K is too small for it to pay, the f64 LU in place does.
+        let estimate = MemoryEstimate::new(n, size, rhs_count, threads);
+        let mixed_fits = size >= MIXED_MIN_UNKNOWNS
+            && estimate
+                .with_f32_factor()
+                .check(params.memory_budget_bytes)
+                .is_ok();
+        let precision = if params.precision == Precision::Mixed && mixed_fits {
+            Precision::Mixed
+        } else {
+            estimate.check(params.memory_budget_bytes)?;
+            Precision::Double
+        };
         let mut matrix = DenseMatrix::zeros(size, size)?;
         let consts = KernelConstants::new(material);
         let quads: Vec<ElementQuad> = (0..n).map(|e| ElementQuad::new(mesh, e)).collect();
@@ -456,6 +472,7 @@ impl LinearSystem {
             gauge_fixed,
             max_condition: params.max_condition,
             quadrature,
+            precision,
         })
     }
 }

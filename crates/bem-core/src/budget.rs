@@ -23,6 +23,9 @@ pub struct MemoryEstimate {
     /// contributions of one column range), or the solve's scratch copy of one block of
     /// right-hand sides, whichever is larger (they are not alive together).
     pub buffers: u64,
+    /// The f32 copy of K the mixed-precision LU factorises ([`crate::MixedLu`]), 4·size²; 0
+    /// for the f64 LU in place.
+    pub factor32: u64,
 }
 
 impl MemoryEstimate {
@@ -49,6 +52,21 @@ impl MemoryEstimate {
             matrix: 8u64.saturating_mul(size).saturating_mul(size),
             rhs: 8 * size * r,
             buffers: (t * per_thread).max(solve_scratch),
+            factor32: 0,
+        }
+    }
+
+    /// The estimate with the mixed-precision LU's f32 copy of K ([`crate::Precision::Mixed`]).
+    ///
+    /// ```
+    /// let e = bem_core::MemoryEstimate::new(3000, 9000, 10, 2);
+    /// assert_eq!(e.with_f32_factor().total() - e.total(), 4 * 9000 * 9000);
+    /// ```
+    pub fn with_f32_factor(self) -> Self {
+        let size = (self.matrix / 8).isqrt();
+        Self {
+            factor32: 4u64.saturating_mul(size).saturating_mul(size),
+            ..self
         }
     }
 
@@ -57,6 +75,7 @@ impl MemoryEstimate {
         self.matrix
             .saturating_add(self.rhs)
             .saturating_add(self.buffers)
+            .saturating_add(self.factor32)
     }
 
     /// Fails with [`BemError::OverBudget`] when the total exceeds `budget` (`None`: the memory

@@ -175,6 +175,13 @@ pub enum BemError {
         /// Largest pivot magnitude.
         max_pivot: f64,
     },
+    /// The mixed-precision solve's iterative refinement stopped converging
+    /// ([`crate::MixedLu::solve_in_place`]); the f64 LU is the fallback.
+    #[error("the mixed-precision refinement stalled after at most {rounds} rounds")]
+    RefinementStalled {
+        /// Most rounds allowed.
+        rounds: usize,
+    },
     /// The matrix contains NaN or infinite entries.
     #[error("the {what} contains non-finite entries")]
     NonFinite {

@@ -9,7 +9,9 @@
 //! could not reach it ([`QuadratureParams`], [`AssemblyReport`]), the analytic singular G
 //! block ([`singular`]) and the rigid-body row sum for the diagonal H blocks. The mixed system `K x = y` is assembled directly, column block by
 //! column block in parallel ([`LinearSystem::assemble`]), and solved with a blocked dense LU with
-//! partial pivoting built on faer's kernels ([`DenseLu`]) for many right-hand sides at once.
+//! partial pivoting built on faer's kernels ([`DenseLu`]) for many right-hand sides at once;
+//! by default K above [`MIXED_MIN_UNKNOWNS`] unknowns is factorised in f32 and the answer
+//! refined to f64 accuracy ([`MixedLu`], [`Precision`]).
 //! Both stages report progress and can be cancelled ([`Control`]). [`ResponseBasis`]
 //! precomputes the response to each of several displacement groups so that any combination is an
 //! exact linear sum.
@@ -58,6 +60,7 @@ pub mod kernels;
 mod material;
 mod matrix;
 mod mesh;
+mod mixed;
 mod naive;
 pub mod quadrature;
 mod response;
@@ -75,10 +78,11 @@ pub use error::{BemError, MeshError};
 pub use material::Material;
 pub use matrix::DenseMatrix;
 pub use mesh::SurfaceMesh;
+pub use mixed::{MAX_MIXED_CONDITION, MIXED_MIN_UNKNOWNS, MixedLu};
 pub use naive::assemble_h_g;
 pub use quadrature::QuadratureParams;
 pub use response::{DisplacementGroup, ResponseBasis};
-pub use solve::{DEFAULT_MAX_CONDITION, Solution, SolveParams, SolveReport, solve};
+pub use solve::{DEFAULT_MAX_CONDITION, Precision, Solution, SolveParams, SolveReport, solve};
 pub use vertex::{element_to_vertex, element_to_vertex_linear};
 
 pub use faer;

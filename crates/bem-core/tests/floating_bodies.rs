@@ -196,6 +196,7 @@ fn condition_estimate_refuses_the_floating_sphere_system() {
         gauge_fixed: false,
         max_condition: DEFAULT_MAX_CONDITION,
         quadrature: Default::default(),
+        precision: bem_core::Precision::Double,
     };
     let estimate = bem_core::DenseLu::factor(DenseMatrix::from(&k))
         .expect("the pivots alone do not reveal it")
