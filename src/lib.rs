@@ -36,6 +36,7 @@ pub mod face_simplify;
 pub mod large_face;
 mod lid_closure;
 pub mod measure;
+mod modiolus_pin;
 pub mod open;
 mod pipeline;
 pub mod presets;

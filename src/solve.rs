@@ -9,6 +9,7 @@ use face_prep::muscle_model::MuscleModel;
 use glam::DVec3;
 
 use crate::control::{Control, Stage};
+use crate::modiolus_pin::ModiolusCases;
 use crate::pipeline::PipelineError;
 
 /// Responses of the shell to each muscle at slider = 1 (canonical frame).
@@ -58,8 +59,14 @@ pub(crate) fn solve_rig(
     for e in rig.sliding_elements() {
         kinds[e as usize] = ElementKind::Sliding;
     }
-    let groups: Vec<Vec<(usize, DVec3)>> = (0..rig.muscles.len())
+    // A muscle that pins a modiolus gets its response from the modiolus's unit load cases
+    // (its own case stays empty; crate::modiolus_pin).
+    let modiolus = ModiolusCases::plan(rig, &kinds, rig.muscles.len());
+    let mut groups: Vec<Vec<(usize, DVec3)>> = (0..rig.muscles.len())
         .map(|k| {
+            if modiolus.is_pinned(k) {
+                return Vec::new();
+            }
             let force = rig.is_force_control(k);
             rig.muscle_pattern(k)
                 .into_iter()
@@ -84,6 +91,7 @@ pub(crate) fn solve_rig(
                 .collect()
         })
         .collect();
+    groups.extend(modiolus.load_cases());
     let progress = |p: bem_core::Progress| {
         let stage = match p.stage {
             bem_core::Stage::Assembly => Stage::Assembly,
@@ -121,6 +129,8 @@ pub(crate) fn solve_rig(
         .map(|s| s.displacement)
         .collect();
     let mut element = element;
+    modiolus.apply(&mut element)?;
+    groups.truncate(rig.muscles.len());
     // A force has no unit: scale each force-driven response to its target (the largest
     // front-surface displacement of the muscle's full contraction).
     let front_vertices = rig.face_vertex_count.min(rig.shell.vertices.len());
@@ -147,6 +157,10 @@ pub(crate) fn solve_rig(
     // element values instead of being recovered again.
     let mut peak_ratio = vec![None; element.len()];
     for (k, (field, at_vertices)) in element.iter_mut().zip(&mut vertex).enumerate() {
+        // A pinned response already moves by its pin (a length): nothing to scale.
+        if modiolus.is_pinned(k) {
+            continue;
+        }
         if let Some(target) = rig.force_target(k) {
             let factor =
                 face_prep::force_controls::scale_to_target(&at_vertices[..front_vertices], target);

@@ -325,13 +325,10 @@ fn zygomaticus_mediapipe_both_sides() {
     zygomaticus_moves_its_corner(0, MuscleKind::ZygomaticusMajorR, 0.8);
 }
 
-/// Known gap: on the decimated ICT face the left corner moves 9.2 mm (77 % of the largest,
-/// 11.9 mm, on the cheek 8 mm lateral of it; 73 % of 12.6 mm before the shell's vertex values
-/// were fitted linearly, 67 % of 13.7 mm before the lips were relaxed where they would turn over), the
-/// right one 13.7 mm: the decimated mesh is not symmetric and neither is its simplified copy
-/// (simulated whole, 10.7 / 11.7 mm before the corners followed the margin).
+/// Regression (issue 10): as a force pulling on the lips, the zygomaticus moved the decimated
+/// ICT face's left corner 9.2 mm (77 % of the largest motion), the right one 13.7 mm; pinning
+/// the modiolus ([`face_prep::modiolus`]) moves both about 13.7 mm, the largest motion.
 #[test]
-#[ignore = "known gap: ICT dec2500 left corner 9.2 mm, 77 % of the largest motion (see the issue note)"]
 fn zygomaticus_ict_2500_left() {
     zygomaticus_moves_its_corner(1, MuscleKind::ZygomaticusMajorL, 0.8);
 }
@@ -452,9 +449,7 @@ fn ict_13k_left_and_right_mirror_within_a_millimetre_at_corners_and_brows() {
 /// when the right brow was measured on a one-vertex peak; read at the nearest vertices
 /// instead, 3.9 mm apart).
 /// Known gaps, measured: the inner brows differ by up to 2.5 mm (the corrugators, 1.35 / 3.85
-/// mm; the decimated eye loops' medial ends are not mirror images), and the mouth corners:
-/// the left zygomaticus moves its corner 9.2 mm, the right one 13.7
-/// (`zygomaticus_ict_2500_left`, ignored).
+/// mm; the decimated eye loops' medial ends are not mirror images).
 #[test]
 fn ict_2500_left_and_right_mirror_within_a_millimetre_at_the_brows() {
     let worst = landmark_asymmetry_at_mm(1, &[Landmarks::Brows]);
@@ -469,8 +464,8 @@ fn ict_2500_left_and_right_mirror_within_a_millimetre_at_the_brows() {
 /// the force muscle's scale, and the left corner moves 1.3 mm, nothing else more than 5.4 mm.
 /// The rig is flagged (`an_1800_triangle_copy_of_ict_2500_is_flagged`); a remeshed copy keeps
 /// the smile (`remeshed_ict_2500_on_an_1800_triangle_copy_keeps_its_smile`).
+/// Since the modiolus is pinned ([`face_prep::modiolus`]) the slivers no longer set the scale.
 #[test]
-#[ignore = "known gap: on an 1800-triangle copy ICT 2500's left zygomaticus moves its corner 1.3 mm (see the issue note)"]
 fn zygomaticus_ict_2500_left_on_an_1800_triangle_copy() {
     let mesh = face_prep::load_face(&support::asset(support::FACES[1])).unwrap();
     let mut params = PipelineParams::default();
@@ -492,12 +487,11 @@ fn zygomaticus_ict_2500_left_on_an_1800_triangle_copy() {
     );
 }
 
-/// Issue 10's symmetry criterion at ICT 2500's mouth corners (within 1 mm), which its copy
-/// does not meet yet: the mirrored corner motions of its paired controls differ by up to 5.1 mm
-/// (the zygomatici move the corners 9.2 / 13.7 mm; the README's notes on the corner gap list
-/// what was tried).
+/// Issue 10's symmetry criterion at ICT 2500's mouth corners (within 1 mm). Regression: with
+/// the zygomaticus a plain force the mirrored corner motions differed by up to 5.1 mm (9.2 /
+/// 13.7 mm); with the modiolus pinned but pulled along each side's own modiolus elements'
+/// plane, 1.24 mm (the copy's asymmetric fold tilted the planes; [`face_prep::modiolus::TANGENT_RADIUS_MM`]).
 #[test]
-#[ignore = "known gap: ICT dec2500's corners move 9.2 / 13.7 mm at full zygomaticus (see the issue note)"]
 fn ict_2500_left_and_right_mirror_within_a_millimetre_at_the_corners() {
     let worst = landmark_asymmetry_at_mm(1, &[Landmarks::Corners]);
     eprintln!("ICT 2500: worst corner asymmetry {worst:.3} mm");
@@ -780,8 +774,9 @@ fn mediapipe_and_its_subdivided_copy_raise_the_brows_alike() {
 /// run --release --example muscle_probe -- sub.obj --max-triangles 4000`, 78 s) moves its
 /// corners 13.7 mm; its 1 500-triangle copy now keeps the corner vertex, but the margin beside
 /// it is coarser than MediaPipe's own.
+/// Regression (issue 10): 9.5 against 13.7 mm while the zygomaticus was a plain force; the
+/// pinned modiolus moves both about 13.7 mm.
 #[test]
-#[ignore = "known gap: MediaPipe's subdivided copy moves its corners 9.6 mm against 13.7 (see the issue note)"]
 fn mediapipe_and_its_subdivided_copy_agree_at_the_corners() {
     let base = model(0);
     let (fine, fine_lm) = mediapipe_subdivided();
@@ -808,10 +803,10 @@ fn ict_2500_and_13k_raise_the_brows_alike() {
 }
 
 /// Resolution independence (issue 10) at the mouth corners, ICT 2500 against 13k.
-/// Known gap: left corner 9.2 / 13.8 mm (43 %), right corner 13.7 / 13.8 mm but 19 % apart in
-/// direction. ICT 2500 simulated whole moves its corners 10.7 / 11.7 mm.
+/// Before the modiolus was pinned: left corner 9.2 / 13.8 mm (43 %), right corner 13.7 / 13.8
+/// mm but 19 % apart in direction.
+/// Regression: the pinned modiolus ([`face_prep::modiolus`]) closed the gap.
 #[test]
-#[ignore = "known gap: ICT 2500 and 13k differ by up to 43 % at the corners (see the issue note)"]
 fn ict_2500_and_13k_agree_at_the_corners() {
     let (coarse, fine) = (model(1), model(3));
     landmark_motion_agrees(
@@ -860,7 +855,8 @@ fn remeshed_ict_2500_on_an_1800_triangle_copy_keeps_its_smile() {
     }
 }
 
-/// ICT 2500's corners mirror on its remeshed copy (the collapse copy: 5.1 mm apart).
+/// ICT 2500's corners mirror on its remeshed copy too (0.51 mm; 0.82 mm before the modiolus
+/// was pinned, when the collapse copy's were 5.1 mm apart).
 #[test]
 fn remeshed_ict_2500_mirrors_at_the_corners() {
     let m = remeshed_ict_2500(1500);
@@ -926,4 +922,48 @@ fn an_1800_triangle_copy_of_ict_2500_is_flagged() {
         .find(|w| w.contains("largest motion is"))
         .expect("a warning");
     assert!(warning.starts_with(&report.force_peak_control), "{warning}");
+}
+
+/// The modiolus muscles ([`face_prep::modiolus`]) move the modiolus's elements exactly by their
+/// pin in their own response, and leave them free (moving less) in the other muscles'
+/// responses: checked on the shell's element responses of MediaPipe (simulated whole) and of
+/// ICT 13k's copy.
+#[test]
+fn modiolus_elements_move_by_their_pin() {
+    for face in [0, 3] {
+        let m = model(face);
+        let rig = &m.rig;
+        let mut pinned = 0;
+        for k in 0..rig.muscles.len() {
+            let Some(pin) = rig.modiolus_pin(k) else {
+                continue;
+            };
+            pinned += 1;
+            let elements = rig.modiolus_elements(pin.side);
+            assert!(elements.len() >= 3, "{} elements", elements.len());
+            let response = &m.shell_element_response[k];
+            let size = pin.displacement.length();
+            for &e in &elements {
+                let off = (response[e as usize] - pin.displacement).length();
+                assert!(
+                    off <= 1e-6 * size,
+                    "{} element {e}: off its pin by {off:e} of {size}",
+                    support::FACES[face]
+                );
+            }
+            // Away from the modiolus the face moves less than the modiolus itself does.
+            let front = rig.face_vertex_count;
+            let largest_vertex = m.shell_vertex_response[k][..front]
+                .iter()
+                .map(|u| u.length())
+                .fold(0.0, f64::max);
+            assert!(
+                largest_vertex <= 1.05 * size,
+                "{}: {largest_vertex} against the pin's {size}",
+                rig.muscles[k].name
+            );
+        }
+        // zygomaticus major, levator and depressor anguli oris, risorius, buccinator, both sides
+        assert_eq!(pinned, 10, "{}", support::FACES[face]);
+    }
 }

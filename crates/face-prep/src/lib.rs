@@ -28,6 +28,7 @@ pub mod force_controls;
 pub mod gltf_read;
 pub mod jaw;
 pub mod limits;
+pub mod modiolus;
 pub mod muscle_file;
 pub mod muscle_kind;
 pub mod muscle_model;
