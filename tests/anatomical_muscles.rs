@@ -490,7 +490,7 @@ fn zygomaticus_ict_2500_left_on_an_1800_triangle_copy() {
 /// Issue 10's symmetry criterion at ICT 2500's mouth corners (within 1 mm). Regression: with
 /// the zygomaticus a plain force the mirrored corner motions differed by up to 5.1 mm (9.2 /
 /// 13.7 mm); with the modiolus pinned but pulled along each side's own modiolus elements'
-/// plane, 1.24 mm (the copy's asymmetric fold tilted the planes; [`face_prep::modiolus::TANGENT_RADIUS_MM`]).
+/// plane, 1.24 mm (the copy's asymmetric fold tilted the planes; [`face_prep::modiolus::SKIN_STEP_MM`]).
 #[test]
 fn ict_2500_left_and_right_mirror_within_a_millimetre_at_the_corners() {
     let worst = landmark_asymmetry_at_mm(1, &[Landmarks::Corners]);

@@ -8,7 +8,7 @@
 //! ([`FaceRig::modiolus_pin`]) moves it rigidly: in that muscle's response the front elements
 //! within [`MODIOLUS_RADIUS_MM`] of the mouth corner ([`FaceRig::modiolus_elements`]) translate
 //! together by the muscle's shortening, `max_strain × length`, toward its origin (along the
-//! skin: the in-plane direction projected onto the modiolus's tangent plane); everything else
+//! skin, [`SKIN_STEP_MM`]); everything else
 //! follows through the elastic solve. The elements stay traction-type in the shared system
 //! (free in every other response); the pin is added per response by superposing unit-traction
 //! responses of the modiolus elements (facebem's solve).
@@ -16,7 +16,7 @@
 //! Why: as a plain traction the pull's largest motion sat at the commissure, where the lips'
 //! knife edges meet like a crack tip, and depended on the few elements there. The corner moved
 //! 9.2 mm on the left of ICT 2500's copy and 13.7 mm on its right, 13.7 mm on MediaPipe and
-//! 9.5 mm on MediaPipe subdivided 1 → 4. Pinned, they move 13.5–13.9 mm.
+//! 9.5 mm on MediaPipe subdivided 1 → 4. Pinned, they move 12.7–13.8 mm.
 //!
 //! ```
 //! use face_prep::{FaceRig, MuscleKind, RigParams, Side, load_face};
@@ -44,11 +44,21 @@ use crate::shell::ElementTag;
 /// move together.
 pub const MODIOLUS_RADIUS_MM: f64 = 6.0;
 
-/// Radius, mm, of the skin around the modiolus whose mean normal gives the plane a pin moves
-/// in (twice [`MODIOLUS_RADIUS_MM`]: wide enough that how a copy triangulates the lips' fold
-/// at the corner does not tilt it; on ICT 2500's copy the modiolus's own elements tilted the
-/// two sides' pulls 1.2 mm apart at the corners).
-pub const TANGENT_RADIUS_MM: f64 = 12.0;
+/// How far along the muscle, mm, the skin's depth is read for the direction a pin moves in:
+/// the muscle's direction in the front plane, sloping with the skin over this distance (the
+/// depth a smooth average over [`DEPTH_RADIUS_MM`] at each end). Regressions, on ICT 2500's
+/// copies (not mirror-symmetric): in the plane of each side's own modiolus elements the two
+/// sides' pulls came out 1.2 mm apart at the corners; along the straight line to the origin's
+/// skin the risorius (origin 0.75 interocular distances out) went deep into the face, 2.5 /
+/// 4.2 mm apart; with the depth a plain mean over 6–8 mm discs, 1.3 mm apart on the collapse
+/// copy (risorius) or the remeshed one (zygomaticus); read at the point itself, the corner
+/// lies over the mouth's hole and the pull stayed in the face plane (captured-smile cosine
+/// 0.76 against 0.86). Here every pinned muscle mirrors within 0.5 mm on both copies.
+pub const SKIN_STEP_MM: f64 = 15.0;
+
+/// Radius, mm, of the skin whose depth is averaged at each end of [`SKIN_STEP_MM`], weighted
+/// by area and a raised cosine of the distance.
+pub const DEPTH_RADIUS_MM: f64 = 12.0;
 
 /// A muscle's hold on the modiolus at slider = +1 (the linear opposite of full contraction).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -106,17 +116,18 @@ impl FaceRig {
                 .is_some_and(|c| c.distance(att.insertion) * mpu < MODIOLUS_RADIUS_MM)
         })?;
         let elements = self.modiolus_elements(side);
-        let centre = self.modiolus_centre(side)?;
-        let normal = (0..self.shell.element_count())
-            .filter(|&e| self.shell.tags[e] == ElementTag::Front)
-            .filter(|&e| {
-                self.shell.centroid(e).truncate().distance(centre) * mpu < TANGENT_RADIUS_MM
-            })
-            .map(|e| self.shell_normal_area(e))
-            .sum::<DVec3>()
-            .normalize_or_zero();
-        let pull = (att.origin - att.insertion).extend(0.0);
-        let along_skin = (pull - normal * pull.dot(normal)).normalize_or_zero();
+        // Along the skin: the muscle's direction in the front plane, with the depth the
+        // surface drops over its first SKIN_STEP_MM toward the origin.
+        let pull = att.origin - att.insertion;
+        let step = pull.normalize_or_zero() * (SKIN_STEP_MM / mpu);
+        let depth = match (
+            self.front_depth(att.insertion + step),
+            self.front_depth(att.insertion),
+        ) {
+            (Some(there), Some(here)) => there - here,
+            _ => 0.0,
+        };
+        let along_skin = step.extend(depth).normalize_or_zero();
         let shortening = att.max_strain * self.params.anatomical.strength * pull.length();
         if elements.is_empty() || along_skin == DVec3::ZERO || shortening <= 0.0 {
             return None;
@@ -127,9 +138,26 @@ impl FaceRig {
         })
     }
 
-    /// Element `e`'s normal times its area (twice the area's cross product, halved).
-    fn shell_normal_area(&self, e: usize) -> DVec3 {
-        let [a, b, c] = self.shell.triangles[e].map(|v| self.shell.vertices[v as usize]);
-        0.5 * (b - a).cross(c - a)
+    /// Mean depth (canonical z) of the front surface around `at` (canonical x-y): the front
+    /// elements' centroid depths weighted by their area and a raised cosine of their distance
+    /// from `at`, 1 there and 0 at [`DEPTH_RADIUS_MM`] (smooth, so how a copy's elements fall
+    /// across the radius hardly matters); `None` where no element is that close.
+    fn front_depth(&self, at: DVec2) -> Option<f64> {
+        let radius = DEPTH_RADIUS_MM / self.mm_per_unit();
+        let (mut z, mut weight) = (0.0, 0.0);
+        for e in 0..self.shell.element_count() {
+            let c = self.shell.centroid(e);
+            let d = c.truncate().distance(at);
+            if self.shell.tags[e] != ElementTag::Front || d >= radius {
+                continue;
+            }
+            let [p, q, r] = self.shell.triangles[e].map(|v| self.shell.vertices[v as usize]);
+            let w = 0.5
+                * (q - p).cross(r - p).length()
+                * (0.5 + 0.5 * (std::f64::consts::PI * d / radius).cos());
+            z += c.z * w;
+            weight += w;
+        }
+        (weight > 0.0).then(|| z / weight)
     }
 }
