@@ -111,12 +111,10 @@ impl ModiolusCases {
                 unit[col].get(e).map_or(0.0, |u| u.dot(AXES[row % 3]))
             });
             let lu = DenseLu::factor(matrix)?;
+            // Never empty: a side is planned only when a control pins it.
             let pinned: Vec<usize> = (0..self.pins.len())
                 .filter(|&k| self.pins[k].is_some_and(|p| p.side == side.side))
                 .collect();
-            if pinned.is_empty() {
-                continue;
-            }
             let mut rhs = Mat::<f64>::from_fn(m, pinned.len(), |row, col| {
                 let d = self.pins[pinned[col]].map_or(DVec3::ZERO, |p| p.displacement);
                 d.dot(AXES[row % 3])

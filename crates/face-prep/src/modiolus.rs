@@ -8,8 +8,7 @@
 //! ([`FaceRig::modiolus_pin`]) moves it rigidly: in that muscle's response the front elements
 //! within [`MODIOLUS_RADIUS_MM`] of the mouth corner ([`FaceRig::modiolus_elements`]) translate
 //! together by the muscle's shortening, `max_strain × length`, toward its origin (along the
-//! skin, [`SKIN_STEP_MM`]); everything else
-//! follows through the elastic solve. The elements stay traction-type in the shared system
+//! skin, [`SKIN_STEP_MM`]); everything else follows through the elastic solve. The elements stay traction-type in the shared system
 //! (free in every other response); the pin is added per response by superposing unit-traction
 //! responses of the modiolus elements (facebem's solve).
 //!
@@ -38,6 +37,7 @@ use crate::muscle_kind::{Generator, Side};
 use crate::muscle_model::MuscleModel;
 use crate::rig::FaceRig;
 use crate::shell::ElementTag;
+use crate::topology::triangle_area;
 
 /// Radius of the modiolus, mm, around the mouth corner: it spans about 10–12 mm of skin
 /// lateral of the commissure (Gray's Anatomy, ch. 29). Elements whose centroid lies within it
@@ -151,10 +151,9 @@ impl FaceRig {
             if self.shell.tags[e] != ElementTag::Front || d >= radius {
                 continue;
             }
-            let [p, q, r] = self.shell.triangles[e].map(|v| self.shell.vertices[v as usize]);
-            let w = 0.5
-                * (q - p).cross(r - p).length()
-                * (0.5 + 0.5 * (std::f64::consts::PI * d / radius).cos());
+            let area =
+                triangle_area(self.shell.triangles[e].map(|v| self.shell.vertices[v as usize]));
+            let w = area * (0.5 + 0.5 * (std::f64::consts::PI * d / radius).cos());
             z += c.z * w;
             weight += w;
         }
