@@ -2,7 +2,7 @@
 """Side view of the ICT 13k face's midline: neutral (grey), ICT's captured jawOpen (green) and
 the rig's jawOpen (blue), as docs/jaw_open_profile.png. Needs python3-pil.
 
-    cargo run --release --bin facebem -- pose assets/ict_narrow_face_4loop.obj --preset jawOpen -o /tmp/jaw.obj
+    cargo run --release -p facebem-cli -- pose assets/ict_narrow_face_4loop.obj --preset jawOpen -o /tmp/jaw.obj
     python3 scripts/jaw_profile.py /tmp/jaw.obj docs/jaw_open_profile.png
 
 Also prints the motion of the mesh's lowest midline vertex (the lower edge under the jaw), in mm

@@ -7,6 +7,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 /// The stages of [`crate::build_face_model`], in order.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
 pub enum Stage {
     /// Simplification (large faces), orientation, features, shell, muscles and skull.
     Prep,
@@ -16,8 +17,10 @@ pub enum Stage {
     Factorisation,
     /// One solve per muscle (all right-hand sides together).
     Solves,
-    /// Element → vertex averaging, frame change and transfer to the full mesh.
+    /// Frame change and transfer of the simulated copy's responses to the user's mesh.
     Transfer,
+    /// The passes that settle the responses on the user's mesh ([`crate::settle`]).
+    Settle,
 }
 
 impl Stage {
@@ -29,6 +32,7 @@ impl Stage {
             Stage::Factorisation => "factorisation",
             Stage::Solves => "solves",
             Stage::Transfer => "transfer",
+            Stage::Settle => "settle",
         }
     }
 }

@@ -5,9 +5,15 @@
 //! once with one right-hand side per muscle, and each muscle's response is stored per vertex
 //! ([`MuscleBasis`]) so sliders pose the face exactly: `v = v0 + Σ_k s_k · D_k`.
 //!
+//! The stages, in the order [`pipeline`] runs them (`docs/architecture.md`): [`input`] (read a
+//! face file), [`frame`] (loops and canonical frame), [`copy`] (the simulated copy), the rig
+//! (face-prep: shell and controls), [`solve`], [`transfer`], [`settle`]; then [`expressions`]
+//! (presets, ARKit, VRM), [`export`] (glTF, OBJ), [`cache`] (rig files) and [`report`]. The data
+//! they share is in [`model`].
+//!
 //! ```no_run
-//! use facebem::{build_face_model, cache, presets, Control, PipelineParams};
-//! let (mesh, obj) = facebem::open::read_face("face.obj".as_ref())?;
+//! use facebem::{build_face_model, cache, expressions::presets, Control, PipelineParams};
+//! let (mesh, obj) = facebem::input::read_face("face.obj".as_ref())?;
 //! let control = Control::new().with_progress(|p| eprintln!("{} {}/{}", p.stage, p.done, p.total));
 //! let mut model = build_face_model(&mesh, &PipelineParams::default(), &control)?;
 //! model.obj_source = obj;
@@ -24,33 +30,29 @@ pub use bem_core;
 pub use face_prep;
 
 mod atomic_write;
-mod basis;
 pub mod cache;
-pub mod contact_sheet;
 mod control;
-pub mod describe;
+pub mod copy;
 pub mod export;
-pub mod expression_sets;
-pub mod face_remesh;
-pub mod face_simplify;
-pub mod large_face;
-mod lid_closure;
-pub mod measure;
-mod modiolus_pin;
-pub mod open;
-mod pipeline;
-pub mod presets;
-mod relaxation;
-pub mod remesh;
-pub mod rolled_in;
-mod solve;
-pub mod untangle;
+pub mod expressions;
+pub mod frame;
+pub mod input;
+pub mod model;
+pub mod pipeline;
+pub mod report;
+pub mod settle;
+pub mod solve;
+pub mod transfer;
 
 pub use atomic_write::{OutputPathError, WriteError, check_output, write_atomic};
-pub use basis::{MuscleBasis, PoseError};
 pub use control::{Control, Progress, Stage};
-pub use pipeline::{
-    FaceModel, PipelineError, PipelineParams, PrecomputeReport, PreparedRig,
-    SUSPICIOUS_AMPLIFICATION, SUSPICIOUS_FORCE_PEAK, SimplifiedFace, build_face_model, prep_rig,
-    prepare,
+pub use model::{
+    FaceModel, MuscleBasis, PipelineError, PipelineParams, PoseError, PrecomputeReport,
+    PreparedRig, SUSPICIOUS_AMPLIFICATION, SUSPICIOUS_FORCE_PEAK, SimplifiedFace,
 };
+pub use pipeline::{build_face_model, prep_rig, prepare};
+
+/// The README's Rust example, compiled as a doctest so it cannot drift from the API.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctests;

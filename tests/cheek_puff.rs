@@ -5,7 +5,7 @@
 mod support;
 
 use face_prep::MuscleKind;
-use facebem::measure::{FaceLandmarks, flipped_triangles};
+use facebem::report::measure::{FaceLandmarks, flipped_triangles};
 use facebem::{Control, FaceModel, PipelineParams, build_face_model};
 use glam::DVec3;
 

@@ -6,23 +6,28 @@
 //! the thesis's rule and its figures (the seed's method stays reproducible); the anatomical
 //! default is held to human motion in `tests/anatomical_muscles.rs`. The 2500-, 4595- and
 //! 13 120-triangle faces go through the simplified large-face path.
+//!
+//! Runs of the pipeline with other controls and parameters (cancelling, progress, the cache
+//! of `load_or_build`, shell offsets, feature boxes) are in `tests/pipeline_runs.rs`.
 
+mod end_to_end_common;
 mod support;
 
 use std::sync::OnceLock;
 
+use end_to_end_common::{canon_disp, canonical_positions, muscle, nearest, thesis_params};
 use face_prep::{ElementTag, MuscleKind};
 use facebem::cache::{self, CacheError, ContainerError};
 use facebem::export::GltfParams;
 use facebem::{Control, FaceModel, PipelineParams, build_face_model};
-use glam::{DMat3, DVec3};
+use glam::DVec3;
 
 static MODELS: [OnceLock<FaceModel>; 4] = [const { OnceLock::new() }; 4];
 
 fn model(face: usize) -> &'static FaceModel {
     MODELS[face].get_or_init(|| {
         let path = support::asset(support::FACES[face]);
-        let (mesh, obj) = facebem::open::read_face(&path).expect("bundled face loads");
+        let (mesh, obj) = facebem::input::read_face(&path).expect("bundled face loads");
         let mut model = build_face_model(&mesh, &thesis_params(), &Control::new())
             .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
         model.obj_source = obj;
@@ -36,51 +41,6 @@ fn model(face: usize) -> &'static FaceModel {
         );
         model
     })
-}
-
-/// Default parameters with the thesis muscle model.
-fn thesis_params() -> PipelineParams {
-    let mut params = PipelineParams::default();
-    params.rig.muscle_model = face_prep::muscle_model::MuscleModel::Thesis;
-    params
-}
-
-fn muscle(model: &FaceModel, kind: MuscleKind) -> usize {
-    model
-        .basis
-        .muscle_index(kind.id())
-        .unwrap_or_else(|| panic!("muscle {} missing", kind.id()))
-}
-
-/// Linear part of canonical_from_input (displacements are vectors).
-fn to_canonical(model: &FaceModel) -> DMat3 {
-    model.rig.canonical_from_input.matrix3
-}
-
-/// Canonical positions of the user's vertices.
-fn canonical_positions(model: &FaceModel) -> Vec<DVec3> {
-    model
-        .mesh
-        .vertices
-        .iter()
-        .map(|&p| model.rig.canonical_from_input.transform_point3(p))
-        .collect()
-}
-
-/// Index of the user vertex closest to canonical point `p`.
-fn nearest(points: &[DVec3], p: DVec3) -> usize {
-    (0..points.len())
-        .min_by(|&a, &b| {
-            points[a]
-                .distance_squared(p)
-                .total_cmp(&points[b].distance_squared(p))
-        })
-        .unwrap_or(0)
-}
-
-/// Canonical displacement of user vertex `v` for slider `s` of muscle `k`.
-fn canon_disp(model: &FaceModel, k: usize, v: usize, s: f64) -> DVec3 {
-    to_canonical(model) * (s * model.basis.displacements[k][v])
 }
 
 fn skull_does_not_move(face: usize) {
@@ -127,7 +87,7 @@ fn skull_does_not_move(face: usize) {
 /// canonical x ≈ ±1.9, y ≈ −4.75), which made the zygomaticus responses blow up (corner
 /// displacements of 10³–10⁴ face units on the 13k face); and simplifying by position only
 /// folded their rolled lips into a pleat at the right mouth corner, where 4 front/back pairs
-/// crossed (see `LargeFaceParams::normal_weight`, and `facebem::rolled_in`).
+/// crossed (see `LargeFaceParams::normal_weight`, and `facebem::copy::rolled_in`).
 fn shell_does_not_intersect_itself(face: usize) {
     let m = model(face);
     assert_eq!(
@@ -144,7 +104,7 @@ fn shell_does_not_intersect_itself(face: usize) {
 /// meet the front tangentially at the eye and mouth knife edges (amplification 63 and 258; 3.2
 /// and 9.0 after the finite wedge angle); simulating their thin rolled-in eyelids and lips and
 /// locking every vertex of their dense contours made them sensitive to the simplified copy
-/// (up to 1751 over targets and offsets; now 1.0 and 1.05, see `facebem::rolled_in`).
+/// (up to 1751 over targets and offsets; now 1.0 and 1.05, see `facebem::copy::rolled_in`).
 fn responses_are_not_amplified(face: usize) {
     let m = model(face);
     let a = m.report.response_amplification;
@@ -164,7 +124,7 @@ fn responses_are_not_amplified(face: usize) {
 /// The corners are the extreme-x vertices of the simulated mouth loop. Regression: on the ICT
 /// faces that loop used to run deep inside the rolled-in, pressed-together lips, and its
 /// corner vertex (0.8 cm inside) moved outward but down; with the rolled-in lips peeled off the
-/// simulated copy (`facebem::rolled_in`) it is the visible corner.
+/// simulated copy (`facebem::copy::rolled_in`) it is the visible corner.
 fn zygomaticus_l_pulls_left_corner_up_and_out(face: usize) {
     let m = model(face);
     let k = muscle(m, MuscleKind::ZygomaticusMajorL);
@@ -304,7 +264,7 @@ fn pose_is_linear(face: usize) {
 
 fn obj_export_keeps_the_input_layout(face: usize) {
     let m = model(face);
-    let sliders = facebem::presets::find("laugh")
+    let sliders = facebem::expressions::presets::find("laugh")
         .unwrap()
         .sliders_for(m.muscle_ids());
     let text = m.obj_text(&sliders).unwrap();
@@ -370,11 +330,11 @@ fn gltf_exports_validate_and_match(face: usize) {
             .collect();
         // The ARKit and VRM targets first, then each muscle's contract and relax, then the
         // presets.
-        let (named, _) = facebem::expression_sets::for_rig(Default::default(), m.muscle_ids());
+        let (named, _) = facebem::expressions::for_rig(Default::default(), m.muscle_ids());
         let first_own = named.len();
         assert_eq!(
             targets.len(),
-            first_own + 2 * m.basis.muscle_count() + facebem::presets::ALL.len() - 1
+            first_own + 2 * m.basis.muscle_count() + facebem::expressions::presets::ALL.len() - 1
         );
         for k in 0..m.basis.muscle_count() {
             let d = &m.basis.displacements[k];
@@ -561,203 +521,5 @@ fn mediapipe_left_and_right_responses_mirror() {
             "{}: mirror error {err} vs scale {scale}",
             left.id()
         );
-    }
-}
-
-/// Cancelling before the start stops the pipeline with `Cancelled`.
-#[test]
-fn cancelled_control_stops_the_pipeline() {
-    let (mesh, _) = facebem::open::read_face(&support::asset(support::FACES[0])).unwrap();
-    let control = Control::new();
-    control.cancel();
-    let err = build_face_model(&mesh, &PipelineParams::default(), &control).unwrap_err();
-    assert!(matches!(err, facebem::PipelineError::Cancelled), "{err}");
-}
-
-/// Progress reaches the caller for every stage, in order.
-#[test]
-fn progress_reports_every_stage_in_order() {
-    use facebem::Stage;
-    use std::sync::{Arc, Mutex};
-    let (mesh, _) = facebem::open::read_face(&support::asset(support::FACES[0])).unwrap();
-    let stages = Arc::new(Mutex::new(Vec::<Stage>::new()));
-    let log = stages.clone();
-    let control = Control::new().with_progress(move |p| {
-        let mut s = log.lock().unwrap();
-        if s.last() != Some(&p.stage) {
-            s.push(p.stage);
-        }
-    });
-    let model = build_face_model(&mesh, &PipelineParams::default(), &control).unwrap();
-    assert_eq!(model.basis.muscle_count(), MuscleKind::ALL.len());
-    let seen = stages.lock().unwrap().clone();
-    assert_eq!(
-        seen,
-        vec![
-            Stage::Prep,
-            Stage::Assembly,
-            Stage::Factorisation,
-            Stage::Solves,
-            Stage::Transfer
-        ]
-    );
-}
-
-/// Cancelling while the BEM runs (when the factorisation starts) stops it with `Cancelled`.
-#[test]
-fn cancel_during_the_solve_stops_it() {
-    let (mesh, _) = facebem::open::read_face(&support::asset(support::FACES[0])).unwrap();
-    let base = Control::new();
-    let handle = base.clone();
-    let control = base.with_progress(move |p| {
-        if p.stage == facebem::Stage::Factorisation {
-            handle.cancel();
-        }
-    });
-    let err = build_face_model(&mesh, &PipelineParams::default(), &control).unwrap_err();
-    assert!(matches!(err, facebem::PipelineError::Cancelled), "{err}");
-}
-
-/// `load_or_build`: computes and saves on a miss, loads on a hit, recomputes over a corrupt file.
-#[test]
-fn load_or_build_uses_the_cache_and_recovers_from_corruption() {
-    use facebem::open::{CacheStatus, load_or_build};
-    let (mesh, obj) = facebem::open::read_face(&support::asset(support::FACES[0])).unwrap();
-    let dir = tempfile::tempdir().unwrap();
-    let path = dir.path().join("face.rig");
-    let params = PipelineParams::default();
-    let (first, status) =
-        load_or_build(&mesh, obj.clone(), &params, &path, &Control::new()).unwrap();
-    assert!(
-        matches!(
-            status,
-            CacheStatus::Computed {
-                save_error: None,
-                ..
-            }
-        ),
-        "{status:?}"
-    );
-    let (second, status) =
-        load_or_build(&mesh, obj.clone(), &params, &path, &Control::new()).unwrap();
-    assert_eq!(status, CacheStatus::Loaded);
-    assert_eq!(second.basis, first.basis);
-    assert_eq!(second.obj_source, obj);
-    std::fs::write(&path, b"FACEBEM\x1a garbage").unwrap();
-    let (third, status) = load_or_build(&mesh, obj, &params, &path, &Control::new()).unwrap();
-    match status {
-        CacheStatus::Computed {
-            reason,
-            save_error: None,
-        } => assert!(reason.contains("face.rig"), "{reason}"),
-        other => panic!("{other:?}"),
-    }
-    assert_eq!(third.basis, first.basis);
-    assert!(
-        facebem::cache::load(&path).is_ok(),
-        "the corrupt cache was replaced"
-    );
-}
-
-/// The MediaPipe face's model with back-face offset `offset` (fraction of the face size).
-fn mediapipe_with_offset(offset: f64) -> FaceModel {
-    let mesh = face_prep::load_face(&support::asset(support::FACES[0])).unwrap();
-    let mut params = thesis_params();
-    params.rig.offset = offset;
-    build_face_model(&mesh, &params, &Control::new()).unwrap()
-}
-
-/// A paper-thin shell (offset 0.05 % of the face size, about 0.1 mm on MediaPipe: front and
-/// back nearly coincide everywhere) is a valid, intersection-free solid on which the solve is
-/// near-singular (responses about 60 times the muscles' own motion). The report measures it
-/// and warns.
-#[test]
-fn a_near_singular_solve_is_reported() {
-    let m = mediapipe_with_offset(0.0005);
-    assert_eq!(m.report.shell_self_intersections, 0);
-    let a = m.report.response_amplification;
-    assert!(a > 5.0 * facebem::SUSPICIOUS_AMPLIFICATION, "{a}");
-    let warnings = m.report.warnings();
-    assert_eq!(warnings.len(), 1, "{warnings:?}");
-    assert!(warnings[0].contains("near-singular"), "{}", warnings[0]);
-    // The measure is what it says: the largest element response over the largest prescribed
-    // displacement, per muscle, maximised over muscles.
-    let recomputed = (0..m.rig.muscles.len())
-        .map(|k| {
-            let d = m
-                .rig
-                .muscle_pattern(k)
-                .iter()
-                .map(|(_, d)| d.length())
-                .fold(0.0, f64::max);
-            let u = m.shell_element_response[k]
-                .iter()
-                .map(|u| u.length())
-                .fold(0.0, f64::max);
-            u / d
-        })
-        .fold(0.0, f64::max);
-    assert_eq!(a, recomputed);
-}
-
-/// Regression (found 2026-11-24 by raising the shell offset): MediaPipe with offset 0.06 had an
-/// intersection-free shell on which the solve was near-singular (amplification 466), because
-/// the smoothed back face met the front tangentially beside the mouth's knife edge. With the
-/// offset's magnitude set from the knife-edge taper after smoothing, it is well-conditioned
-/// (measured 1.00).
-#[test]
-fn thick_shells_stay_well_conditioned() {
-    let m = mediapipe_with_offset(0.06);
-    assert_eq!(m.report.shell_self_intersections, 0);
-    let a = m.report.response_amplification;
-    assert!((0.5..2.0).contains(&a), "amplification {a}");
-    assert_eq!(m.report.warnings(), Vec::<String>::new());
-}
-
-/// User-adjusted feature boxes are a pipeline parameter: the skull and the muscles both come
-/// from them (here the mouth box moved down by 8% of the face size, which also lowers the nose
-/// box and so changes the skull), on a plain face and on a simplified large face.
-#[test]
-fn feature_boxes_parameter_places_skull_and_muscles() {
-    for face in [support::FACES[0], support::FACES[3]] {
-        let mesh = face_prep::load_face(&support::asset(face)).unwrap();
-        let auto = facebem::prepare(&mesh, &PipelineParams::default()).unwrap();
-        let b = auto.rig.boxes;
-        let d = glam::DVec2::new(0.0, -0.08 * auto.rig.face_size);
-        let boxes =
-            face_prep::FeatureBoxes::derive(b.face, b.eye_l, b.eye_r, b.mouth.translated(d))
-                .unwrap();
-        let params = PipelineParams {
-            boxes: Some(boxes),
-            ..PipelineParams::default()
-        };
-        let edited = facebem::prepare(&mesh, &params).unwrap();
-        assert_eq!(edited.rig.boxes, boxes, "{face}");
-        let expected = auto.rig.rebuild_with_boxes(boxes).unwrap();
-        assert_eq!(edited.rig.skull, expected.skull, "{face}");
-        assert_eq!(edited.rig.muscles, expected.muscles, "{face}");
-        assert_ne!(
-            edited.rig.skull, auto.rig.skull,
-            "{face}: skull follows the boxes"
-        );
-        let changed = edited
-            .rig
-            .muscles
-            .iter()
-            .zip(&auto.rig.muscles)
-            .filter(|(a, b)| a.front_chain != b.front_chain)
-            .count();
-        assert!(changed >= 4, "{face}: only {changed} muscles moved");
-        // An inverted box is a typed error, not a panic.
-        let mut bad = boxes;
-        std::mem::swap(&mut bad.eye_l.min.x, &mut bad.eye_l.max.x);
-        let params = PipelineParams {
-            boxes: Some(bad),
-            ..PipelineParams::default()
-        };
-        assert!(matches!(
-            facebem::prepare(&mesh, &params),
-            Err(facebem::PipelineError::Prep(_))
-        ));
     }
 }

@@ -11,8 +11,8 @@ mod support;
 
 use std::sync::OnceLock;
 
-use facebem::expression_sets::{self, AGREED_CONTROL_IDS, NameSet, NameSets, arkit, vrm};
-use facebem::measure::{FaceLandmarks, cosine};
+use facebem::expressions::{self, AGREED_CONTROL_IDS, NameSet, NameSets, arkit, vrm};
+use facebem::report::measure::{FaceLandmarks, cosine};
 use facebem::{Control, FaceModel, PipelineParams, build_face_model};
 use glam::DVec3;
 
@@ -21,7 +21,7 @@ static MODELS: [OnceLock<FaceModel>; 4] = [const { OnceLock::new() }; 4];
 /// The model of bundled face `face` ([`support::FACES`]), with its OBJ layout.
 fn model(face: usize) -> &'static FaceModel {
     MODELS[face].get_or_init(|| {
-        let (mesh, obj) = facebem::open::read_face(&support::asset(support::FACES[face])).unwrap();
+        let (mesh, obj) = facebem::input::read_face(&support::asset(support::FACES[face])).unwrap();
         let mut m = build_face_model(&mesh, &PipelineParams::default(), &Control::new()).unwrap();
         m.obj_source = obj;
         m
@@ -29,7 +29,7 @@ fn model(face: usize) -> &'static FaceModel {
 }
 
 /// Whether the rig has at least one control of `e` (or `e` needs none).
-fn makeable(e: &expression_sets::NamedExpression, ids: &[String]) -> bool {
+fn makeable(e: &expressions::NamedExpression, ids: &[String]) -> bool {
     let controls = e.controls();
     controls.is_empty() || controls.iter().any(|c| ids.iter().any(|i| i == c))
 }
@@ -121,7 +121,7 @@ fn glb_holds_the_arkit_and_vrm_names_the_rig_can_make_first() {
     );
     // Partial ones name their missing controls.
     for (name, missing) in x["partialTargets"].as_object().into_iter().flatten() {
-        let e = expression_sets::find(name).unwrap();
+        let e = expressions::find(name).unwrap();
         for c in missing.as_array().unwrap() {
             let c = c.as_str().unwrap();
             assert!(e.controls().contains(&c) && !ids.iter().any(|i| i == c));
@@ -137,7 +137,7 @@ fn glb_holds_the_arkit_and_vrm_names_the_rig_can_make_first() {
         .collect();
     let metres = m.metres_per_unit();
     for (k, name) in names[..first_own].iter().enumerate() {
-        let r = expression_sets::find(name).unwrap().resolve(ids).unwrap();
+        let r = expressions::find(name).unwrap().resolve(ids).unwrap();
         let posed = m.pose(&r.sliders).unwrap();
         for (i, w) in m.mesh.input_to_vertex.iter().enumerate() {
             let d = w.map_or(DVec3::ZERO, |w| {
@@ -170,7 +170,7 @@ fn names_option_picks_the_sets() {
             .iter()
             .map(|n| n.as_str().unwrap())
             .collect();
-        let expected: Vec<&str> = expression_sets::of_set(set)
+        let expected: Vec<&str> = expressions::of_set(set)
             .iter()
             .filter(|e| makeable(e, m.muscle_ids()))
             .map(|e| e.name)
@@ -196,7 +196,7 @@ fn names_option_picks_the_sets() {
 
 /// Canonical displacement, mm, of vertex `v` for a named expression at full weight.
 fn motion_mm(m: &FaceModel, lm: &FaceLandmarks, name: &str, v: u32) -> Option<DVec3> {
-    let r = expression_sets::find(name)?.resolve(m.muscle_ids())?;
+    let r = expressions::find(name)?.resolve(m.muscle_ids())?;
     let posed = m.pose(&r.sliders).unwrap();
     Some(lm.canonical_mm(posed[v as usize] - m.mesh.vertices[v as usize]))
 }
@@ -330,7 +330,7 @@ fn ict_captured_expressions_cosine_table() {
                 *a += b;
             }
         }
-        let e = expression_sets::find(name).unwrap();
+        let e = expressions::find(name).unwrap();
         let Some(r) = e.resolve(m.muscle_ids()) else {
             println!(
                 "| {name} | {} | not in this rig (needs {}) | – |",
@@ -366,7 +366,7 @@ fn ict_captured_expressions_cosine_table() {
 /// Issue 11's flip limit: every ARKit and VRM name a face's rig makes, at full weight, turns at
 /// most 0.5 % of the front triangles over, and only in the lips and lids and the folds they make
 /// (within [`LIPS_MM`] of the mouth loop or [`LIDS_MM`] of an eye loop, in the front plane). The
-/// known gaps would be listed with their measured counts (`cargo run --release --example
+/// known gaps would be listed with their measured counts (`cargo run --release -p facebem-tools --bin
 /// named_expressions`); none is left. Regressions: every face's brow lowering (`browDown*`,
 /// and `angry`, which uses it) turned 1–6 triangles over at the corrugator's peak beside the
 /// inner canthus, 12–21 mm from the eye loop, before the corrugator was relaxed in its
@@ -396,8 +396,11 @@ fn named_targets_flip_at_most_half_a_percent(
             continue;
         };
         let posed = m.pose(&r.sliders).unwrap();
-        let flipped =
-            facebem::measure::flipped_triangles(&m.mesh.vertices, &posed, &m.mesh.triangles);
+        let flipped = facebem::report::measure::flipped_triangles(
+            &m.mesh.vertices,
+            &posed,
+            &m.mesh.triangles,
+        );
         let flips = flipped.len();
         let far: Vec<String> = flipped
             .iter()
@@ -442,10 +445,10 @@ fn named_targets_flip_at_most_half_a_percent(
 }
 
 /// Where issue 11 lets skin fold: within this distance of the mouth loop, mm (the lips and the
-/// folds beside them; `facebem::untangle::LIPS_MM`).
+/// folds beside them; `facebem::settle::untangle::LIPS_MM`).
 const LIPS_MM: f64 = 12.0;
 /// The same for the eye loops (the lids and the folds at the canthi; wider than
-/// `facebem::untangle::LIDS_MM`, the band the pipeline relaxes, which stops short of the brows).
+/// `facebem::settle::untangle::LIDS_MM`, the band the pipeline relaxes, which stops short of the brows).
 const LIDS_MM: f64 = 12.0;
 
 /// The mouth and eye loops of a face in its canonical front plane.

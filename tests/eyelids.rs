@@ -5,7 +5,7 @@
 //! (`levator_palpebrae_l/_r`) the upper one; on the ICT 13k face the blink is held to the captured
 //! ICT-FaceKit eyeBlink_L / eyeBlink_R (`tests/data/calibration`, MIT).
 //!
-//! `cargo run --release --example calibrate` prints the figures.
+//! `cargo run --release -p facebem-tools --bin calibrate` prints the figures.
 
 mod support;
 
@@ -13,7 +13,7 @@ use std::sync::OnceLock;
 
 use face_prep::Side;
 use face_prep::eyelid::EyeMargins;
-use facebem::measure::{FaceLandmarks, cosine, flipped_triangles};
+use facebem::report::measure::{FaceLandmarks, cosine, flipped_triangles};
 use facebem::{Control, FaceModel, PipelineParams, build_face_model};
 use glam::DVec3;
 
@@ -310,7 +310,7 @@ face_tests!(mediapipe, 0);
 face_tests!(ict_2500, 1);
 // Regression: the scan's slit right eye (2.5 mm open, its lids overlapping in the front view)
 // had its lower margin lifted 0.13 mm past the upper one by the squint, until
-// `facebem::lid_closure`'s squint guard.
+// `facebem::settle::lid_closure`'s squint guard.
 face_tests!(lee_perry_smith, 2);
 face_tests!(ict_13k, 3);
 

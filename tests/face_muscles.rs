@@ -15,8 +15,8 @@ mod support;
 use std::sync::OnceLock;
 
 use face_prep::{MuscleKind, Side};
-use facebem::expression_sets::sliders_for_name;
-use facebem::measure::{FaceLandmarks, flipped_triangles};
+use facebem::expressions::sliders_for_name;
+use facebem::report::measure::{FaceLandmarks, flipped_triangles};
 use facebem::{Control, FaceModel, PipelineParams, build_face_model};
 use glam::DVec3;
 

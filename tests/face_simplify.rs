@@ -5,9 +5,9 @@
 mod support;
 
 use face_prep::FaceMesh;
-use facebem::face_remesh::remesh_face_keeping;
-use facebem::face_simplify::{SimplifyPath, mirror_map, simplify_face};
-use facebem::large_face::{CopyMethod, LargeFaceParams};
+use facebem::copy::remesh_face::remesh_face_keeping;
+use facebem::copy::simplify::{SimplifyPath, mirror_map, simplify_face};
+use facebem::copy::{CopyMethod, LargeFaceParams};
 use facebem::{PipelineParams, prepare};
 use glam::DVec3;
 use std::collections::BTreeSet;
@@ -162,7 +162,7 @@ fn the_copy_keeps_the_mouth_corners() {
         let prepared = prepare(&mesh, &params).unwrap();
         assert_eq!(prepared.simplify_path, Some(path), "{name}");
         let copy = prepared.simplified.expect("simplified");
-        let lm = facebem::measure::FaceLandmarks::of_mesh(
+        let lm = facebem::report::measure::FaceLandmarks::of_mesh(
             &mesh,
             prepared.rig.canonical_from_input,
             prepared.rig.mm_per_unit(),

@@ -110,7 +110,7 @@ fn check_file(path: &std::path::Path, basis: &MuscleBasis) {
     assert_eq!(targets[at("happy")], targets[at("preset_happy")]);
     assert!(targets[at("neutral")].iter().all(|d| *d == [0.0; 3]));
     // The happy preset target equals the pose's displacement (f32 tolerance 1e-7 relative).
-    let happy = facebem::presets::find("happy").unwrap();
+    let happy = facebem::expressions::presets::find("happy").unwrap();
     let posed = basis.pose(&happy.sliders_for(&basis.muscle_ids)).unwrap();
     let t = names.iter().position(|n| n == "preset_happy").unwrap();
     for v in 0..posed.len() {
@@ -140,7 +140,7 @@ fn animation_gives_one_clip_per_expression_named_after_it() {
     write_gltf(&path, &basis, &params).unwrap();
     support::assert_valid(&path);
     let (doc, buffers, _) = gltf::import(&path).unwrap();
-    let expressions: Vec<&str> = facebem::presets::ALL
+    let expressions: Vec<&str> = facebem::expressions::presets::ALL
         .iter()
         .map(|p| p.name)
         .filter(|n| *n != "neutral")

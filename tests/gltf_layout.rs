@@ -12,7 +12,7 @@ use glam::DVec3;
 /// The default face with `vt` and `vn` lines: the left half (x < 0) of the face uses one UV
 /// island, the right half another, so every vertex on the midline has two texture coordinates.
 fn textured_default_face() -> String {
-    let src = facebem::open::DEFAULT_FACE_OBJ;
+    let src = facebem::input::DEFAULT_FACE_OBJ;
     let v: Vec<DVec3> = src
         .lines()
         .filter_map(|l| l.strip_prefix("v "))
@@ -69,7 +69,7 @@ fn textured_default_face() -> String {
 
 /// The rigged model of the file `path` (OBJ or glTF), with its layout.
 fn rigged(path: &std::path::Path) -> facebem::FaceModel {
-    let (mesh, obj_source) = facebem::open::read_face(path).unwrap();
+    let (mesh, obj_source) = facebem::input::read_face(path).unwrap();
     let mut model = build_face_model(&mesh, &PipelineParams::default(), &Control::new()).unwrap();
     model.obj_source = obj_source;
     model

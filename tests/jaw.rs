@@ -10,7 +10,7 @@ mod support;
 use std::sync::OnceLock;
 
 use face_prep::MuscleKind;
-use facebem::measure::{FaceLandmarks, cosine, flipped_triangles};
+use facebem::report::measure::{FaceLandmarks, cosine, flipped_triangles};
 use facebem::{Control, FaceModel, PipelineParams, build_face_model};
 use glam::{DVec2, DVec3};
 
@@ -197,7 +197,7 @@ fn jaw_open_drops_the_lower_face(face: usize, flip_limit: f64) {
 /// Every jaw mode: the contour above the jaw segment stays within 0.5 mm (the
 /// jaw's part of the contour moves with the jaw), the eyes and forehead within 0.5 mm; the
 /// protrusion moves the chin forward and the lateral shift moves it toward the face's left at
-/// −1 (`/work/notes/ids.md` signs).
+/// −1 (the signs of `docs/user-guide.md`).
 fn jaw_modes_keep_the_upper_face(face: usize) {
     let m = model(face);
     let p = points(m);
@@ -263,9 +263,9 @@ macro_rules! face_tests {
 face_tests!(mediapipe, 0, super::FLIP_LIMIT);
 face_tests!(lee_perry_smith, 2, super::FLIP_LIMIT);
 // The ICT faces' lips roll inward and press together; their rolled-in flaps are not simulated
-// but hang from the lip margins (`facebem::rolled_in`), and where the upper and lower margins
+// but hang from the lip margins (`facebem::copy::rolled_in`), and where the upper and lower margins
 // part, triangles turned over until the lips were relaxed where they would
-// (`facebem::untangle`): ICT 13k 43 -> 35 of 13 120 (0.27 %), ICT 2500 18 -> 6 of 2500
+// (`facebem::settle::untangle`): ICT 13k 43 -> 35 of 13 120 (0.27 %), ICT 2500 18 -> 6 of 2500
 // (0.24 %; it was the known gap), all near the mouth loop; ICT's own captured jawOpen flips
 // 0.24 %.
 face_tests!(ict_2500, 1, super::FLIP_LIMIT);

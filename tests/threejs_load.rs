@@ -10,7 +10,7 @@ use facebem::{Control, PipelineParams, build_face_model};
 
 #[test]
 fn threejs_gltfloader_gets_a_face_sized_mesh_with_named_morph_targets() {
-    let (mesh, obj) = facebem::open::read_face(&support::asset(support::FACES[0])).unwrap();
+    let (mesh, obj) = facebem::input::read_face(&support::asset(support::FACES[0])).unwrap();
     let mut model = build_face_model(&mesh, &PipelineParams::default(), &Control::new()).unwrap();
     model.obj_source = obj;
     let dir = tempfile::tempdir().unwrap();
@@ -34,10 +34,10 @@ fn threejs_gltfloader_gets_a_face_sized_mesh_with_named_morph_targets() {
         .iter()
         .map(|n| n.as_str().unwrap())
         .collect();
-    let (named, _) = facebem::expression_sets::for_rig(Default::default(), model.muscle_ids());
+    let (named, _) = facebem::expressions::for_rig(Default::default(), model.muscle_ids());
     assert_eq!(
         names.len(),
-        named.len() + 2 * model.basis.muscle_count() + facebem::presets::ALL.len() - 1
+        named.len() + 2 * model.basis.muscle_count() + facebem::expressions::presets::ALL.len() - 1
     );
     // morphTargetDictionary resolves the ARKit and VRM names, which come first.
     for name in ["happy", "mouthSmileLeft", "mouthSmileRight", "neutral"] {

@@ -27,12 +27,12 @@ pub const MAGIC: [u8; 8] = *b"FACEBEM\x1a";
 /// teeth (sliding deep layer), a force-driven zygomaticus, the mouth's muscles and
 /// `Generator::Sphincter`; 12: the jaw opening as the chord of its arc, 0.5 rad, 6 mm glide; 13: large faces simplified in
 /// their canonical frame and, when mirror-symmetric, as a mirrored half,
-/// [`crate::face_simplify`]; 14: squints that keep the lids from crossing,
+/// [`crate::copy::simplify`](mod@crate::copy::simplify); 14: squints that keep the lids from crossing,
 /// `lid_closure::keep_squints_open`; 15: the input mouth corners a copy does not hold follow
 /// its margin instead of hanging between the lips; 16: a large face's copy keeps the input
 /// mouth corners it holds and resamples the mouth loop from them; 17: the lips relaxed where a
-/// response would turn them over, [`crate::untangle`]; 18: turned triangles evened out
-/// ([`crate::untangle::relax_inversions`]' second stage) and a large face's carried-over
+/// response would turn them over, [`crate::settle::untangle`]; 18: turned triangles evened out
+/// ([`crate::settle::untangle::relax_inversions`]' second stage) and a large face's carried-over
 /// vertices relaxed after the lid closure; 19: the lids relaxed after the lid closure; 20: turned
 /// patches smoothed (the third stage) and `mouthPucker`'s two sphincter halves relaxed as a sum; 21: the mid and lower face
 /// relaxed beyond the lips and lids; 22: each corrugator relaxed in its `browDown*`

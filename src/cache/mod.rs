@@ -22,7 +22,7 @@ use std::path::{Path, PathBuf};
 use face_prep::FaceMesh;
 
 use crate::atomic_write::{WriteError, write_atomic};
-use crate::pipeline::{FaceModel, PipelineParams};
+use crate::model::{FaceModel, PipelineParams};
 pub use container::{ContainerError, FORMAT_VERSION, Header, MAGIC};
 pub use validate::validate_model;
 

@@ -6,7 +6,7 @@ use face_prep::error::sig6;
 use face_prep::limits::MAX_COORDINATE;
 use glam::DVec3;
 
-use crate::pipeline::FaceModel;
+use crate::model::{FaceModel, SimplifiedFace};
 
 fn check_points(what: &str, points: &[DVec3]) -> Result<(), String> {
     for (i, p) in points.iter().enumerate() {
@@ -62,6 +62,44 @@ fn check_fields(
 /// [`MAX_COORDINATE`], and every per-vertex, per-element and per-muscle field as long as what
 /// it describes. Returns what is wrong.
 pub fn validate_model(model: &FaceModel) -> Result<(), String> {
+    check_mesh(model)?;
+    let muscles = check_basis(model)?;
+    check_rig(model, muscles)?;
+    check_fields(
+        "shell element response",
+        &model.shell_element_response,
+        muscles,
+        model.rig.shell.triangles.len(),
+    )?;
+    check_fields(
+        "shell vertex response",
+        &model.shell_vertex_response,
+        muscles,
+        model.rig.shell.vertices.len(),
+    )?;
+    if let Some(s) = &model.simplified {
+        check_simplified(s, model.mesh.vertices.len())?;
+    }
+    if let Some(text) = &model.obj_source {
+        let v_lines = text
+            .lines()
+            .filter(|l| l.trim_start().starts_with("v ") || l.trim_start().starts_with("v\t"))
+            .count();
+        check_len(
+            "OBJ source v lines",
+            v_lines,
+            model.mesh.input_to_vertex.len(),
+        )?;
+    }
+    let nu = model.params.poisson;
+    if !(0.0..0.5).contains(&nu) {
+        return Err(format!("Poisson ratio {} is outside [0, 0.5)", sig6(nu)));
+    }
+    Ok(())
+}
+
+/// The user's face mesh: not empty, finite vertices, triangle and input-map indices in range.
+fn check_mesh(model: &FaceModel) -> Result<(), String> {
     let mesh = &model.mesh;
     let nv = mesh.vertices.len();
     if nv == 0 || mesh.triangles.is_empty() {
@@ -73,8 +111,12 @@ pub fn validate_model(model: &FaceModel) -> Result<(), String> {
         "input vertex map",
         mesh.input_to_vertex.iter().flatten(),
         nv,
-    )?;
+    )
+}
 
+/// The muscle basis against the face mesh; returns the muscle count.
+fn check_basis(model: &FaceModel) -> Result<usize, String> {
+    let nv = model.mesh.vertices.len();
     let basis = &model.basis;
     let muscles = basis.muscle_ids.len();
     if muscles == 0 {
@@ -85,7 +127,11 @@ pub fn validate_model(model: &FaceModel) -> Result<(), String> {
     check_points("basis neutral vertex", &basis.neutral)?;
     check_indices("basis triangles", basis.triangles.iter().flatten(), nv)?;
     check_fields("displacement", &basis.displacements, muscles, nv)?;
+    Ok(muscles)
+}
 
+/// The rig: its shell, loops, muscle chains, skull, face size and canonical frame.
+fn check_rig(model: &FaceModel, muscles: usize) -> Result<(), String> {
     let rig = &model.rig;
     let shell = &rig.shell;
     let ne = shell.triangles.len();
@@ -127,59 +173,37 @@ pub fn validate_model(model: &FaceModel) -> Result<(), String> {
     if !(a.matrix3.is_finite() && a.translation.is_finite()) {
         return Err("the canonical frame is not finite".into());
     }
+    Ok(())
+}
 
-    check_fields(
-        "shell element response",
-        &model.shell_element_response,
-        muscles,
-        ne,
+/// The simplified copy a large face was simulated on, against the face's `nv` vertices.
+fn check_simplified(s: &SimplifiedFace, nv: usize) -> Result<(), String> {
+    let m = &s.mesh;
+    check_points("simulated vertex", &m.vertices)?;
+    check_indices(
+        "simulated triangles",
+        m.triangles.iter().flatten(),
+        m.vertices.len(),
     )?;
-    check_fields(
-        "shell vertex response",
-        &model.shell_vertex_response,
-        muscles,
-        nsv,
+    check_len(
+        "simulated vertex map",
+        m.original_vertex.len(),
+        m.vertices.len(),
     )?;
-
-    if let Some(s) = &model.simplified {
-        let m = &s.mesh;
-        check_points("simulated vertex", &m.vertices)?;
-        check_indices(
-            "simulated triangles",
-            m.triangles.iter().flatten(),
-            m.vertices.len(),
-        )?;
-        check_len(
-            "simulated vertex map",
-            m.original_vertex.len(),
-            m.vertices.len(),
-        )?;
-        check_indices("simulated vertex map", &m.original_vertex, nv)?;
-        check_len("transfer samples", s.transfer.samples.len(), nv)?;
-        check_indices(
-            "transfer samples",
-            s.transfer.samples.iter().map(|(t, _)| t),
-            m.triangles.len(),
-        )?;
-        if let Some(i) = s
-            .transfer
-            .samples
-            .iter()
-            .position(|(_, w)| !w.iter().all(|x| x.is_finite()))
-        {
-            return Err(format!("transfer sample {i} has non-finite weights"));
-        }
-    }
-    if let Some(text) = &model.obj_source {
-        let v_lines = text
-            .lines()
-            .filter(|l| l.trim_start().starts_with("v ") || l.trim_start().starts_with("v\t"))
-            .count();
-        check_len("OBJ source v lines", v_lines, mesh.input_to_vertex.len())?;
-    }
-    let nu = model.params.poisson;
-    if !(0.0..0.5).contains(&nu) {
-        return Err(format!("Poisson ratio {} is outside [0, 0.5)", sig6(nu)));
+    check_indices("simulated vertex map", &m.original_vertex, nv)?;
+    check_len("transfer samples", s.transfer.samples.len(), nv)?;
+    check_indices(
+        "transfer samples",
+        s.transfer.samples.iter().map(|(t, _)| t),
+        m.triangles.len(),
+    )?;
+    if let Some(i) = s
+        .transfer
+        .samples
+        .iter()
+        .position(|(_, w)| !w.iter().all(|x| x.is_finite()))
+    {
+        return Err(format!("transfer sample {i} has non-finite weights"));
     }
     Ok(())
 }

@@ -60,7 +60,7 @@ pub const BUNDLED: [KnownFace; 4] = [
 /// The bundled face `mesh` is, if any.
 ///
 /// ```
-/// let face = facebem::open::default_face().unwrap();
+/// let face = facebem::input::default_face().unwrap();
 /// let known = facebem::export::attribution::identify(&face).unwrap();
 /// assert_eq!(known.licence, "Apache-2.0");
 /// ```
@@ -111,7 +111,7 @@ mod tests {
             assert_eq!(identify(&mesh), Some(known));
         }
         // Any edit makes it the user's own face.
-        let mut mesh = crate::open::default_face().unwrap();
+        let mut mesh = crate::input::default_face().unwrap();
         mesh.vertices[0].x += 1e-9;
         assert_eq!(identify(&mesh), None);
     }

@@ -115,7 +115,7 @@ impl crate::FaceModel {
         self.rig.unit.metres()
     }
 
-    /// glTF bytes of this face (see [`FaceModel::write_gltf`]).
+    /// glTF bytes of this face (see [`crate::FaceModel::write_gltf`]).
     pub fn gltf_bytes(&self, params: &GltfParams) -> Result<Vec<u8>, ExportError> {
         let layout = self.export_layout()?;
         Ok(export_gltf_layout(
@@ -127,7 +127,7 @@ impl crate::FaceModel {
 
     /// Writes the glTF morph-target export to `path` (atomically; `.gltf` or `.glb`, whatever
     /// `params.format` says): the user's vertex layout, positions in metres, the source's
-    /// attribution ([`FaceModel::gltf_params`]).
+    /// attribution ([`crate::FaceModel::gltf_params`]).
     pub fn write_gltf(&self, path: &Path, params: &GltfParams) -> Result<(), ExportError> {
         let params = GltfParams {
             format: GltfFormat::from_path(path),

@@ -12,11 +12,18 @@ pub const FACES: [&str; 4] = [
     "ict_narrow_face_4loop.obj",
 ];
 
+/// The workspace root (these helpers are shared by the root package's tests and the CLI's).
+pub fn root() -> PathBuf {
+    let here = Path::new(env!("CARGO_MANIFEST_DIR"));
+    here.ancestors()
+        .find(|p| p.join("assets").is_dir() && p.join("Cargo.lock").is_file())
+        .unwrap_or(here)
+        .to_path_buf()
+}
+
 /// Path of a bundled face.
 pub fn asset(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("assets")
-        .join(name)
+    root().join("assets").join(name)
 }
 
 /// Outcome of running a node tool (the Khronos glTF-Validator, three.js).
@@ -55,10 +62,8 @@ fn run_node_script(script: &str, file: &Path) -> Validation {
         );
         return Validation::NodeMissing;
     }
-    let dir = std::env::var_os("GLTF_VALIDATOR_DIR").map_or_else(
-        || Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/gltf-validator"),
-        PathBuf::from,
-    );
+    let dir = std::env::var_os("GLTF_VALIDATOR_DIR")
+        .map_or_else(|| root().join("tests/gltf-validator"), PathBuf::from);
     {
         let _guard = VALIDATOR_INSTALL
             .lock()
@@ -78,9 +83,7 @@ fn run_node_script(script: &str, file: &Path) -> Validation {
             assert!(status.success(), "npm ci in {} failed", dir.display());
         }
     }
-    let script = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("tests/support")
-        .join(script);
+    let script = root().join("tests/support").join(script);
     let out = Command::new("node")
         .arg(&script)
         .arg(&dir)

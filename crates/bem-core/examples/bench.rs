@@ -156,6 +156,19 @@ fn main() -> anyhow_free::Result {
     };
     let threads = rayon::current_num_threads();
     println!("bem-core benchmark, {threads} rayon threads");
+    print_header();
+    let material = Material::new(0.45, 1.0)?;
+    let params = SolveParams::default();
+    let control = Control::default();
+    for target in sizes {
+        bench_size(target, &material, &params, &control)?;
+    }
+    print_legend();
+    Ok(())
+}
+
+/// Column headings of the size table.
+fn print_header() {
     println!(
         "{:>6} {:>6} | {:>9} {:>9} {:>9} {:>7} | {:>8} {:>8} {:>6} | {:>7} | {:>6} {:>8} {:>11}",
         "N",
@@ -172,100 +185,10 @@ fn main() -> anyhow_free::Result {
         "K MB",
         "gemm buf MB"
     );
-    let material = Material::new(0.45, 1.0)?;
-    let params = SolveParams::default();
-    let control = Control::default();
-    for target in sizes {
-        let mesh = torus_for(target);
-        let n = mesh.element_count();
-        let dof = 3 * n;
-        // face-like problem: outer-left 30% fixed, ten driven groups among the fixed elements
-        let prescribed: Vec<bool> = mesh.centroids().iter().map(|c| c.x < -0.55).collect();
-        let fixed: Vec<usize> = (0..n).filter(|&e| prescribed[e]).collect();
-        let mut loads = Loads::new(n, 10);
-        for (k, &e) in fixed.iter().enumerate() {
-            if k % 3 == 0 {
-                loads.set(e, (k / 3) % 10, DVec3::new(0.01, 0.005, -0.002))?;
-            }
-        }
+}
 
-        let naive = if n <= 3500 {
-            let t = Instant::now();
-            let hg = assemble_h_g(&mesh, &material, &params.quadrature)?;
-            drop(hg);
-            format!("{:9.2}", t.elapsed().as_secs_f64())
-        } else {
-            format!("{:>9}", "skipped")
-        };
-        let single = rayon::ThreadPoolBuilder::new().num_threads(1).build()?;
-        let t = Instant::now();
-        let sys1 = single.install(|| {
-            LinearSystem::assemble(&mesh, &material, &prescribed, &loads, &params, &control)
-        })?;
-        let asm_single = t.elapsed().as_secs_f64();
-        drop(sys1);
-
-        // for comparison: the serial zero fill of faer::Mat::zeros that DenseMatrix avoids
-        let t = Instant::now();
-        let zeros = faer::Mat::<f64>::zeros(dof, dof);
-        let t_zero = t.elapsed().as_secs_f64();
-        drop(zeros);
-
-        let baseline = CURRENT.load(Ordering::Relaxed);
-        PEAK.store(baseline, Ordering::Relaxed);
-        let t = Instant::now();
-        let sys = LinearSystem::assemble(&mesh, &material, &prescribed, &loads, &params, &control)?;
-        let asm_par = t.elapsed().as_secs_f64();
-        let peak_asm = PEAK.load(Ordering::Relaxed) - baseline;
-        let LinearSystem {
-            matrix, mut rhs, ..
-        } = sys;
-        let t = Instant::now();
-        let lu = DenseLu::factor(matrix)?;
-        let t_lu = t.elapsed().as_secs_f64();
-        let peak_lu = PEAK.load(Ordering::Relaxed) - baseline;
-        if std::env::var_os("BENCH_DEBUG").is_some() {
-            eprintln!(
-                "peak after assembly {peak_asm}, after LU {peak_lu}, K {}",
-                8 * dof * dof
-            );
-        }
-        let t = Instant::now();
-        lu.solve_in_place(rhs.as_mut())?;
-        let t_solve = t.elapsed().as_secs_f64();
-        let peak = PEAK.load(Ordering::Relaxed) - baseline;
-        drop(lu);
-        drop(rhs);
-        // heap that outlives the solve: gemm's thread-local packing buffers (2 × L3 per thread,
-        // allocated on a thread's first large matrix product, then reused)
-        let retained = CURRENT.load(Ordering::Relaxed).saturating_sub(baseline);
-
-        let mut rng = rand::rngs::StdRng::seed_from_u64(7);
-        let random = faer::Mat::<f64>::from_fn(dof, dof, |_, _| rng.random::<f64>() - 0.5);
-        let t = Instant::now();
-        let lu_random = random.partial_piv_lu();
-        let t_random = t.elapsed().as_secs_f64();
-        drop(lu_random);
-
-        let flops = 2.0 / 3.0 * (dof as f64).powi(3);
-        let k_bytes = 8.0 * (dof as f64).powi(2);
-        println!(
-            "{:>6} {:>6} | {:>9.2} {:>9.2} {} {:>7.2} | {:>8.1} {:>8.1} {:>6.2} | {:>7.3} | {:>6.3} {:>8.0} {:>11.0}",
-            n,
-            dof,
-            asm_par,
-            asm_single,
-            naive,
-            t_zero,
-            flops / t_lu * 1e-9,
-            flops / t_random * 1e-9,
-            t_random / t_lu,
-            t_solve,
-            peak as f64 / k_bytes,
-            k_bytes / 1e6,
-            retained as f64 / 1e6
-        );
-    }
+/// What the columns of the size table mean.
+fn print_legend() {
     println!(
         "Mat0 K = faer::Mat::zeros of one K alone (serial zero fill, which bem-core's lazily zeroed DenseMatrix avoids)"
     );
@@ -276,7 +199,111 @@ fn main() -> anyhow_free::Result {
         "assemble+factor+solve / 8(3N)^2, including gemm's thread-local packing buffers the first time"
     );
     println!("they are allocated (gemm buf MB = heap retained after the solve, 0 once they exist)");
+}
+
+/// One row of the size table: the torus closest to `target` elements.
+fn bench_size(
+    target: usize,
+    material: &Material,
+    params: &SolveParams,
+    control: &Control<'_>,
+) -> anyhow_free::Result {
+    let mesh = torus_for(target);
+    let n = mesh.element_count();
+    let dof = 3 * n;
+    // face-like problem: outer-left 30% fixed, ten driven groups among the fixed elements
+    let prescribed: Vec<bool> = mesh.centroids().iter().map(|c| c.x < -0.55).collect();
+    let fixed: Vec<usize> = (0..n).filter(|&e| prescribed[e]).collect();
+    let mut loads = Loads::new(n, 10);
+    for (k, &e) in fixed.iter().enumerate() {
+        if k % 3 == 0 {
+            loads.set(e, (k / 3) % 10, DVec3::new(0.01, 0.005, -0.002))?;
+        }
+    }
+
+    let naive = if n <= 3500 {
+        let t = Instant::now();
+        let hg = assemble_h_g(&mesh, material, &params.quadrature)?;
+        drop(hg);
+        format!("{:9.2}", t.elapsed().as_secs_f64())
+    } else {
+        format!("{:>9}", "skipped")
+    };
+    let single = rayon::ThreadPoolBuilder::new().num_threads(1).build()?;
+    let t = Instant::now();
+    let sys1 = single.install(|| {
+        LinearSystem::assemble(&mesh, material, &prescribed, &loads, params, control)
+    })?;
+    let asm_single = t.elapsed().as_secs_f64();
+    drop(sys1);
+
+    // for comparison: the serial zero fill of faer::Mat::zeros that DenseMatrix avoids
+    let t = Instant::now();
+    let zeros = faer::Mat::<f64>::zeros(dof, dof);
+    let t_zero = t.elapsed().as_secs_f64();
+    drop(zeros);
+
+    let baseline = CURRENT.load(Ordering::Relaxed);
+    PEAK.store(baseline, Ordering::Relaxed);
+    let t = Instant::now();
+    let sys = LinearSystem::assemble(&mesh, material, &prescribed, &loads, params, control)?;
+    let asm_par = t.elapsed().as_secs_f64();
+    let peak_asm = PEAK.load(Ordering::Relaxed) - baseline;
+    let LinearSystem {
+        matrix, mut rhs, ..
+    } = sys;
+    let t = Instant::now();
+    let lu = DenseLu::factor(matrix)?;
+    let t_lu = t.elapsed().as_secs_f64();
+    let peak_lu = PEAK.load(Ordering::Relaxed) - baseline;
+    if std::env::var_os("BENCH_DEBUG").is_some() {
+        eprintln!(
+            "peak after assembly {peak_asm}, after LU {peak_lu}, K {}",
+            8 * dof * dof
+        );
+    }
+    let t = Instant::now();
+    lu.solve_in_place(rhs.as_mut())?;
+    let t_solve = t.elapsed().as_secs_f64();
+    let peak = PEAK.load(Ordering::Relaxed) - baseline;
+    drop(lu);
+    drop(rhs);
+    // heap that outlives the solve: gemm's thread-local packing buffers (2 × L3 per thread,
+    // allocated on a thread's first large matrix product, then reused)
+    let retained = CURRENT.load(Ordering::Relaxed).saturating_sub(baseline);
+
+    let t_random = random_lu_seconds(dof);
+
+    let flops = 2.0 / 3.0 * (dof as f64).powi(3);
+    let k_bytes = 8.0 * (dof as f64).powi(2);
+    println!(
+        "{:>6} {:>6} | {:>9.2} {:>9.2} {} {:>7.2} | {:>8.1} {:>8.1} {:>6.2} | {:>7.3} | {:>6.3} {:>8.0} {:>11.0}",
+        n,
+        dof,
+        asm_par,
+        asm_single,
+        naive,
+        t_zero,
+        flops / t_lu * 1e-9,
+        flops / t_random * 1e-9,
+        t_random / t_lu,
+        t_solve,
+        peak as f64 / k_bytes,
+        k_bytes / 1e6,
+        retained as f64 / 1e6
+    );
     Ok(())
+}
+
+/// Seconds faer's `partial_piv_lu` takes on a random dense `dof` × `dof` matrix.
+fn random_lu_seconds(dof: usize) -> f64 {
+    let mut rng = rand::rngs::StdRng::seed_from_u64(7);
+    let random = faer::Mat::<f64>::from_fn(dof, dof, |_, _| rng.random::<f64>() - 0.5);
+    let t = Instant::now();
+    let lu_random = random.partial_piv_lu();
+    let t_random = t.elapsed().as_secs_f64();
+    drop(lu_random);
+    t_random
 }
 
 /// Minimal boxed error for the example (no anyhow dependency in this crate).

@@ -15,25 +15,15 @@ use glam::DVec3;
 use rayon::prelude::*;
 
 use crate::DenseMatrix;
-use crate::column::{assemble_column, block_times};
+use crate::assembly_report::AssemblyReport;
+use crate::column::{ColumnInputs, Partial, assemble_column, block_times};
 use crate::kernels::{Block, KernelConstants};
+use crate::params::{Precision, RigidModes, SolveParams};
 use crate::quadrature::ElementQuad;
 use crate::{
-    BemError, Control, ElementKind, Loads, MIXED_MIN_UNKNOWNS, Material, MemoryEstimate, Precision,
-    SolveParams, Stage, SurfaceMesh, tangent_frame,
+    BemError, Control, ElementKind, Loads, MIXED_MIN_UNKNOWNS, Material, MemoryEstimate, Stage,
+    SurfaceMesh, tangent_frame,
 };
-
-/// What to do with a problem that prescribes no displacement anywhere (rigid-body modes).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
-pub enum RigidModes {
-    /// Reject it with [`BemError::PureTraction`].
-    #[default]
-    Reject,
-    /// Fix the gauge: the six rigid modes are removed from the displacement by six Lagrange
-    /// multipliers (area-weighted mean translation and rotation of the boundary are zero).
-    /// Only used when no displacement is prescribed.
-    Fix,
-}
 
 /// The assembled dense system: `matrix · x = rhs`, x = (u on traction-prescribed elements,
 /// t on displacement-prescribed ones, (normal traction, tangential displacement in
@@ -66,71 +56,6 @@ pub struct LinearSystem {
 /// Number of contiguous column ranges whose row sums are accumulated separately during assembly
 /// (enough to keep any core count busy; bounded so their memory stays a few % of K).
 const REDUCTION_RANGES: usize = 64;
-
-/// Accumulators of one column range: H row sums and, once a column of the range carries a load,
-/// its contributions to the right-hand sides.
-pub(crate) struct Partial {
-    pub(crate) row_sums: Vec<Block>,
-    pub(crate) rhs: Option<Vec<f64>>,
-    pub(crate) rhs_len: usize,
-    pub(crate) quadrature: AssemblyReport,
-}
-
-impl Partial {
-    fn new(n: usize, dof: usize, rhs_count: usize) -> Self {
-        Self {
-            row_sums: vec![[[0.0; 3]; 3]; n],
-            rhs: None,
-            rhs_len: dof * rhs_count,
-            quadrature: AssemblyReport::default(),
-        }
-    }
-}
-
-/// An element pair whose off-diagonal block did not reach the requested accuracy.
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
-pub struct UnconvergedBlock {
-    /// Element whose collocation node is the load point (block row).
-    pub row_element: usize,
-    /// Element integrated over (block column).
-    pub column_element: usize,
-    /// Estimated relative error of the block.
-    pub estimated_error: f64,
-}
-
-/// Quadrature accuracy of an assembly: blocks whose estimated relative error exceeds
-/// [`QuadratureParams::tolerance`] (the collocation point closer to the element than the
-/// subdivision's depth limit resolves, e.g. surfaces that nearly touch or cross).
-#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize, serde::Deserialize)]
-pub struct AssemblyReport {
-    /// Number of unconverged off-diagonal blocks.
-    pub unconverged_blocks: usize,
-    /// The one with the largest estimated error (first in column-then-row order on ties).
-    pub worst: Option<UnconvergedBlock>,
-}
-
-impl AssemblyReport {
-    pub(crate) fn note(&mut self, block: UnconvergedBlock) {
-        self.unconverged_blocks += 1;
-        if self
-            .worst
-            .is_none_or(|w| block.estimated_error > w.estimated_error)
-        {
-            self.worst = Some(block);
-        }
-    }
-
-    fn merge(&mut self, other: &AssemblyReport) {
-        self.unconverged_blocks += other.unconverged_blocks;
-        if let Some(b) = other.worst
-            && self
-                .worst
-                .is_none_or(|w| b.estimated_error > w.estimated_error)
-        {
-            self.worst = Some(b);
-        }
-    }
-}
 
 /// Allocates a zero dense matrix, reporting allocation failure instead of aborting.
 pub(crate) fn try_zeros(rows: usize, cols: usize) -> Result<Mat<f64>, BemError> {
@@ -283,18 +208,7 @@ impl LinearSystem {
             .map(|&k| k == ElementKind::Displacement)
             .collect();
         let held: Vec<bool> = kinds.iter().map(|&k| k != ElementKind::Traction).collect();
-        for (what, got) in [
-            ("element kinds", kinds.len()),
-            ("loads", loads.element_count()),
-        ] {
-            if got != n {
-                return Err(BemError::WrongLength {
-                    what,
-                    expected: n,
-                    got,
-                });
-            }
-        }
+        check_lengths(n, kinds, loads)?;
         let gauge_fixed = check_bodies_held(mesh, &held, params.rigid_modes)?;
         control.check()?;
         // assemble in coordinates relative to the mesh's centre: translation invariance
@@ -304,163 +218,39 @@ impl LinearSystem {
         let size = dof + if gauge_fixed { 6 } else { 0 };
         let rhs_count = loads.rhs_count();
         let threads = rayon::current_num_threads().max(1);
-        // The mixed-precision LU needs an f32 copy of K besides K; where that does not fit the
-        // budget, or K is too small for it to pay, the f64 LU in place does.
-        let estimate = MemoryEstimate::new(n, size, rhs_count, threads);
-        let mixed_fits = size >= MIXED_MIN_UNKNOWNS
-            && estimate
-                .with_f32_factor()
-                .check(params.memory_budget_bytes)
-                .is_ok();
-        let precision = if params.precision == Precision::Mixed && mixed_fits {
-            Precision::Mixed
-        } else {
-            estimate.check(params.memory_budget_bytes)?;
-            Precision::Double
-        };
+        let precision = choose_precision(n, size, rhs_count, threads, params)?;
         let mut matrix = DenseMatrix::zeros(size, size)?;
         let consts = KernelConstants::new(material);
         let quads: Vec<ElementQuad> = (0..n).map(|e| ElementQuad::new(mesh, e)).collect();
         let centroids = mesh.centroids();
         let modes = gauge_fixed.then(|| rigid_mode_rows(mesh));
+        let qp = params.quadrature;
         // Columns go to a fixed number of contiguous ranges, each assembled in column order with
         // its own partial row sums, and the partials are added in range order: the result is
         // bit-for-bit the same whatever the thread count or the work stealing did.
-        let width = n.div_ceil(REDUCTION_RANGES).max(1);
-        let done = AtomicUsize::new(0);
-        let step = (n / 100).max(1);
-        let qp = params.quadrature;
+        let tasks = ColumnTasks {
+            inputs: ColumnInputs {
+                quads: &quads,
+                centroids,
+                consts: &consts,
+                qp: &qp,
+                mesh,
+                material,
+                dof,
+                modes: modes.as_ref(),
+            },
+            kinds,
+            loads,
+            control,
+            n,
+            rhs_count,
+            width: n.div_ceil(REDUCTION_RANGES).max(1),
+            done: AtomicUsize::new(0),
+            step: (n / 100).max(1),
+        };
         control.report(Stage::Assembly, 0, n);
-
-        // The ranges are assembled in waves of one range per thread, and each wave's partials
-        // are added to the totals (in range order) before the next wave starts: at most
-        // threads + 1 right-hand-side buffers (the partials of one wave and `rhs`) are alive.
-        let chunk_cols = 3 * width;
-        let chunks = size.div_ceil(chunk_cols);
-        let mut row_sums: Vec<Block> = vec![[[0.0; 3]; 3]; n];
-        let mut quadrature = AssemblyReport::default();
-        let mut rhs = try_zeros(size, rhs_count)?;
-        let mut first = 0;
-        while first < chunks {
-            let last = (first + threads).min(chunks);
-            let c0 = first * chunk_cols;
-            let c1 = (last * chunk_cols).min(size);
-            let partials: Vec<Option<Partial>> = matrix
-                .as_mut()
-                .subcols_mut(c0, c1 - c0)
-                .par_col_chunks_mut(chunk_cols)
-                .enumerate()
-                .map(|(kk, mut range)| -> Result<Option<Partial>, BemError> {
-                    let k = first + kk;
-                    let mut partial: Option<Partial> = None;
-                    for l in 0..range.ncols() / 3 {
-                        control.check()?;
-                        let j = k * width + l;
-                        let cols = three_columns(range.rb_mut().subcols_mut(3 * l, 3)).ok_or(
-                            BemError::Internal {
-                                what: "a column block of K is not 3 contiguous columns",
-                            },
-                        )?;
-                        if j >= n {
-                            // gauge columns: R (rigid modes) in the displacement rows
-                            if let Some(modes) = &modes {
-                                for (c, col) in cols.into_iter().enumerate() {
-                                    let mode = &modes[3 * (j - n) + c];
-                                    for (e, v) in mode.iter().enumerate() {
-                                        col[3 * e..3 * e + 3].copy_from_slice(&v.to_array());
-                                    }
-                                }
-                            }
-                            continue;
-                        }
-                        let partial =
-                            partial.get_or_insert_with(|| Partial::new(n, dof, rhs_count));
-                        assemble_column(
-                            j,
-                            cols,
-                            &quads,
-                            centroids,
-                            &consts,
-                            &qp,
-                            kinds[j],
-                            loads.of(j),
-                            mesh,
-                            material,
-                            partial,
-                            dof,
-                            modes.as_ref(),
-                        )?;
-                        let d = done.fetch_add(1, Ordering::Relaxed) + 1;
-                        if d.is_multiple_of(step) || d == n {
-                            control.report(Stage::Assembly, d, n);
-                        }
-                    }
-                    Ok(partial)
-                })
-                .collect::<Result<_, _>>()?;
-            // add this wave's partials in range order (the same order whatever the wave size)
-            for p in partials.into_iter().flatten() {
-                quadrature.merge(&p.quadrature);
-                for (t, s) in row_sums.iter_mut().zip(&p.row_sums) {
-                    for a in 0..3 {
-                        for b in 0..3 {
-                            t[a][b] += s[a][b];
-                        }
-                    }
-                }
-                if let Some(y) = &p.rhs {
-                    for (r, part) in y.chunks_exact(dof.max(1)).enumerate() {
-                        let col =
-                            rhs.col_mut(r)
-                                .try_as_col_major_mut()
-                                .ok_or(BemError::Internal {
-                                    what: "a right-hand side is not a contiguous column",
-                                })?;
-                        for (t, s) in col.as_slice_mut().iter_mut().zip(part) {
-                            *t += s;
-                        }
-                    }
-                }
-            }
-            first = last;
-        }
-        // diagonal H blocks: into K for traction-prescribed elements, into y for the others
-        for i in 0..n {
-            let s = row_sums[i];
-            let h_ii: Block = std::array::from_fn(|a| std::array::from_fn(|b| -s[a][b]));
-            match kinds[i] {
-                ElementKind::Displacement => {
-                    for &(r, u) in loads.of(i) {
-                        let hu = block_times(&h_ii, u);
-                        for a in 0..3 {
-                            rhs[(3 * i + a, r as usize)] -= hu[a];
-                        }
-                    }
-                }
-                ElementKind::Traction => {
-                    for a in 0..3 {
-                        for b in 0..3 {
-                            matrix[(3 * i + a, 3 * i + b)] = h_ii[a][b];
-                        }
-                    }
-                }
-                ElementKind::Sliding => {
-                    let normal = mesh.normal(i);
-                    let (t1, t2) = tangent_frame(normal);
-                    let (h1, h2) = (block_times(&h_ii, t1), block_times(&h_ii, t2));
-                    for a in 0..3 {
-                        matrix[(3 * i + a, 3 * i + 1)] = h1[a];
-                        matrix[(3 * i + a, 3 * i + 2)] = h2[a];
-                    }
-                    for &(r, v) in loads.of(i) {
-                        let hu = block_times(&h_ii, normal * v.dot(normal));
-                        for a in 0..3 {
-                            rhs[(3 * i + a, r as usize)] -= hu[a];
-                        }
-                    }
-                }
-            }
-        }
+        let (row_sums, quadrature, mut rhs) = tasks.run(&mut matrix, size, threads)?;
+        add_diagonal_blocks(&mut matrix, &mut rhs, &row_sums, kinds, loads, mesh);
         control.report(Stage::Assembly, n, n);
         Ok(Self {
             matrix,
@@ -474,6 +264,236 @@ impl LinearSystem {
             quadrature,
             precision,
         })
+    }
+}
+
+/// The element kinds and the loads must have one entry per element.
+fn check_lengths(n: usize, kinds: &[ElementKind], loads: &Loads) -> Result<(), BemError> {
+    for (what, got) in [
+        ("element kinds", kinds.len()),
+        ("loads", loads.element_count()),
+    ] {
+        if got != n {
+            return Err(BemError::WrongLength {
+                what,
+                expected: n,
+                got,
+            });
+        }
+    }
+    Ok(())
+}
+
+/// The precision of the LU: the mixed-precision LU needs an f32 copy of K besides K; where that
+/// does not fit the budget, or K is too small for it to pay, the f64 LU in place does (and then
+/// the f64 estimate must fit the budget, [`BemError::OverBudget`]).
+fn choose_precision(
+    n: usize,
+    size: usize,
+    rhs_count: usize,
+    threads: usize,
+    params: &SolveParams,
+) -> Result<Precision, BemError> {
+    let estimate = MemoryEstimate::new(n, size, rhs_count, threads);
+    let mixed_fits = size >= MIXED_MIN_UNKNOWNS
+        && estimate
+            .with_f32_factor()
+            .check(params.memory_budget_bytes)
+            .is_ok();
+    Ok(if params.precision == Precision::Mixed && mixed_fits {
+        Precision::Mixed
+    } else {
+        estimate.check(params.memory_budget_bytes)?;
+        Precision::Double
+    })
+}
+
+/// The column tasks of one assembly: what they read, and the progress counter they share.
+struct ColumnTasks<'a, 'c> {
+    inputs: ColumnInputs<'a>,
+    kinds: &'a [ElementKind],
+    loads: &'a Loads,
+    control: &'a Control<'c>,
+    /// Number of elements.
+    n: usize,
+    rhs_count: usize,
+    /// Elements (column blocks) per contiguous column range.
+    width: usize,
+    /// Column blocks assembled so far (for progress reports).
+    done: AtomicUsize,
+    /// Progress is reported every `step` column blocks.
+    step: usize,
+}
+
+impl ColumnTasks<'_, '_> {
+    /// Assembles every column of K (`size` × `size`) and returns the H row sums, the quadrature
+    /// report and the right-hand sides without the diagonal H blocks.
+    fn run(
+        &self,
+        matrix: &mut DenseMatrix,
+        size: usize,
+        threads: usize,
+    ) -> Result<(Vec<Block>, AssemblyReport, Mat<f64>), BemError> {
+        // The ranges are assembled in waves of one range per thread, and each wave's partials
+        // are added to the totals (in range order) before the next wave starts: at most
+        // threads + 1 right-hand-side buffers (the partials of one wave and `rhs`) are alive.
+        let chunk_cols = 3 * self.width;
+        let chunks = size.div_ceil(chunk_cols);
+        let mut row_sums: Vec<Block> = vec![[[0.0; 3]; 3]; self.n];
+        let mut quadrature = AssemblyReport::default();
+        let mut rhs = try_zeros(size, self.rhs_count)?;
+        let mut first = 0;
+        while first < chunks {
+            let last = (first + threads).min(chunks);
+            let c0 = first * chunk_cols;
+            let c1 = (last * chunk_cols).min(size);
+            let partials: Vec<Option<Partial>> = matrix
+                .as_mut()
+                .subcols_mut(c0, c1 - c0)
+                .par_col_chunks_mut(chunk_cols)
+                .enumerate()
+                .map(|(kk, range)| self.assemble_range(first + kk, range))
+                .collect::<Result<_, _>>()?;
+            // add this wave's partials in range order (the same order whatever the wave size)
+            for p in partials.into_iter().flatten() {
+                add_partial(
+                    &mut row_sums,
+                    &mut quadrature,
+                    &mut rhs,
+                    &p,
+                    self.inputs.dof,
+                )?;
+            }
+            first = last;
+        }
+        Ok((row_sums, quadrature, rhs))
+    }
+
+    /// Assembles column range `k` (the columns of elements `k · width ..`, then the gauge
+    /// columns), in column order; `None` when it holds no element column.
+    fn assemble_range(
+        &self,
+        k: usize,
+        mut range: MatMut<'_, f64>,
+    ) -> Result<Option<Partial>, BemError> {
+        let n = self.n;
+        let mut partial: Option<Partial> = None;
+        for l in 0..range.ncols() / 3 {
+            self.control.check()?;
+            let j = k * self.width + l;
+            let cols =
+                three_columns(range.rb_mut().subcols_mut(3 * l, 3)).ok_or(BemError::Internal {
+                    what: "a column block of K is not 3 contiguous columns",
+                })?;
+            if j >= n {
+                // gauge columns: R (rigid modes) in the displacement rows
+                if let Some(modes) = self.inputs.modes {
+                    for (c, col) in cols.into_iter().enumerate() {
+                        let mode = &modes[3 * (j - n) + c];
+                        for (e, v) in mode.iter().enumerate() {
+                            col[3 * e..3 * e + 3].copy_from_slice(&v.to_array());
+                        }
+                    }
+                }
+                continue;
+            }
+            let partial =
+                partial.get_or_insert_with(|| Partial::new(n, self.inputs.dof, self.rhs_count));
+            assemble_column(
+                j,
+                cols,
+                &self.inputs,
+                self.kinds[j],
+                self.loads.of(j),
+                partial,
+            )?;
+            let d = self.done.fetch_add(1, Ordering::Relaxed) + 1;
+            if d.is_multiple_of(self.step) || d == n {
+                self.control.report(Stage::Assembly, d, n);
+            }
+        }
+        Ok(partial)
+    }
+}
+
+/// Adds one column range's partial row sums, quadrature report and right-hand sides to the
+/// totals.
+fn add_partial(
+    row_sums: &mut [Block],
+    quadrature: &mut AssemblyReport,
+    rhs: &mut Mat<f64>,
+    p: &Partial,
+    dof: usize,
+) -> Result<(), BemError> {
+    quadrature.merge(&p.quadrature);
+    for (t, s) in row_sums.iter_mut().zip(&p.row_sums) {
+        for a in 0..3 {
+            for b in 0..3 {
+                t[a][b] += s[a][b];
+            }
+        }
+    }
+    if let Some(y) = &p.rhs {
+        for (r, part) in y.chunks_exact(dof.max(1)).enumerate() {
+            let col = rhs
+                .col_mut(r)
+                .try_as_col_major_mut()
+                .ok_or(BemError::Internal {
+                    what: "a right-hand side is not a contiguous column",
+                })?;
+            for (t, s) in col.as_slice_mut().iter_mut().zip(part) {
+                *t += s;
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Diagonal H blocks `h_ii = −Σ_{j≠i} h_ij` from the row sums: into K for traction-prescribed
+/// elements, into the right-hand sides for the others.
+fn add_diagonal_blocks(
+    matrix: &mut DenseMatrix,
+    rhs: &mut Mat<f64>,
+    row_sums: &[Block],
+    kinds: &[ElementKind],
+    loads: &Loads,
+    mesh: &SurfaceMesh,
+) {
+    for i in 0..kinds.len() {
+        let s = row_sums[i];
+        let h_ii: Block = std::array::from_fn(|a| std::array::from_fn(|b| -s[a][b]));
+        match kinds[i] {
+            ElementKind::Displacement => {
+                for &(r, u) in loads.of(i) {
+                    let hu = block_times(&h_ii, u);
+                    for a in 0..3 {
+                        rhs[(3 * i + a, r as usize)] -= hu[a];
+                    }
+                }
+            }
+            ElementKind::Traction => {
+                for a in 0..3 {
+                    for b in 0..3 {
+                        matrix[(3 * i + a, 3 * i + b)] = h_ii[a][b];
+                    }
+                }
+            }
+            ElementKind::Sliding => {
+                let normal = mesh.normal(i);
+                let (t1, t2) = tangent_frame(normal);
+                let (h1, h2) = (block_times(&h_ii, t1), block_times(&h_ii, t2));
+                for a in 0..3 {
+                    matrix[(3 * i + a, 3 * i + 1)] = h1[a];
+                    matrix[(3 * i + a, 3 * i + 2)] = h2[a];
+                }
+                for &(r, v) in loads.of(i) {
+                    let hu = block_times(&h_ii, normal * v.dot(normal));
+                    for a in 0..3 {
+                        rhs[(3 * i + a, r as usize)] -= hu[a];
+                    }
+                }
+            }
+        }
     }
 }
 

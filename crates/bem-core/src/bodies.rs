@@ -7,8 +7,6 @@
 
 use glam::DVec3;
 
-use crate::mesh::winding_number;
-
 /// Connected component (through shared vertices) of every triangle, numbered 0, 1, … in order of
 /// their first triangle.
 pub(crate) fn components(vertex_count: usize, triangles: &[[u32; 3]]) -> Vec<u32> {
@@ -106,4 +104,18 @@ pub(crate) fn bodies(
             label[o]
         })
         .collect()
+}
+
+/// Generalised winding number of the closed surface at `p` (1 inside, 0 outside for an
+/// outward-oriented surface), from the solid angles of the triangles (Van Oosterom–Strackee).
+pub(crate) fn winding_number(vertices: &[DVec3], triangles: &[[u32; 3]], p: DVec3) -> f64 {
+    let mut total = 0.0;
+    for tri in triangles {
+        let [a, b, c] = tri.map(|i| vertices[i as usize] - p);
+        let (la, lb, lc) = (a.length(), b.length(), c.length());
+        let det = a.dot(b.cross(c));
+        let den = la * lb * lc + a.dot(b) * lc + a.dot(c) * lb + b.dot(c) * la;
+        total += 2.0 * det.atan2(den);
+    }
+    total / (4.0 * std::f64::consts::PI)
 }

@@ -1,6 +1,6 @@
 //! Kelvin fundamental solutions of 3D isotropic elastostatics.
 //!
-//! Conventions (DESIGN.md): `r = x_Q − x_P` (field point Q minus load point P), `n` the outward
+//! Conventions (`docs/design/solve.md`): `r = x_Q − x_P` (field point Q minus load point P), `n` the outward
 //! unit normal at Q, the row index is the direction of the unit point load.
 //!
 //! `U_ij = [(3−4ν) δ_ij + r_,i r_,j] / (16 π μ (1−ν) r)`

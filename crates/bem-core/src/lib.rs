@@ -49,6 +49,7 @@
 //! ```
 
 mod assembly;
+mod assembly_report;
 mod bc;
 mod bodies;
 mod budget;
@@ -62,6 +63,7 @@ mod matrix;
 mod mesh;
 mod mixed;
 mod naive;
+mod params;
 pub mod quadrature;
 mod response;
 pub mod shapes;
@@ -69,7 +71,8 @@ pub mod singular;
 mod solve;
 mod vertex;
 
-pub use assembly::{AssemblyReport, LinearSystem, RigidModes, UnconvergedBlock};
+pub use assembly::LinearSystem;
+pub use assembly_report::{AssemblyReport, UnconvergedBlock};
 pub use bc::{BoundaryCondition, ElementKind, Loads, tangent_frame};
 pub use budget::MemoryEstimate;
 pub use control::{Control, Progress, Stage};
@@ -80,9 +83,10 @@ pub use matrix::DenseMatrix;
 pub use mesh::SurfaceMesh;
 pub use mixed::{MAX_MIXED_CONDITION, MIXED_MIN_UNKNOWNS, MixedLu};
 pub use naive::assemble_h_g;
+pub use params::{DEFAULT_MAX_CONDITION, Precision, RigidModes, SolveParams};
 pub use quadrature::QuadratureParams;
 pub use response::{DisplacementGroup, ResponseBasis};
-pub use solve::{DEFAULT_MAX_CONDITION, Precision, Solution, SolveParams, SolveReport, solve};
+pub use solve::{Solution, SolveReport, solve};
 pub use vertex::{element_to_vertex, element_to_vertex_linear};
 
 pub use faer;

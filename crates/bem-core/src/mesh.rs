@@ -318,20 +318,6 @@ fn check_closed_manifold_oriented(triangles: &[[u32; 3]]) -> Result<(), MeshErro
     Ok(())
 }
 
-/// Generalised winding number of the closed surface at `p` (1 inside, 0 outside for an
-/// outward-oriented surface), from the solid angles of the triangles (Van Oosterom–Strackee).
-pub(crate) fn winding_number(vertices: &[DVec3], triangles: &[[u32; 3]], p: DVec3) -> f64 {
-    let mut total = 0.0;
-    for tri in triangles {
-        let [a, b, c] = tri.map(|i| vertices[i as usize] - p);
-        let (la, lb, lc) = (a.length(), b.length(), c.length());
-        let det = a.dot(b.cross(c));
-        let den = la * lb * lc + a.dot(b) * lc + a.dot(c) * lb + b.dot(c) * la;
-        total += 2.0 * det.atan2(den);
-    }
-    total / (4.0 * std::f64::consts::PI)
-}
-
 /// Each connected component must face outward from the body, not only the total volume be
 /// positive: a point just off its largest triangle along the normal must be outside the body.
 /// (Catches e.g. a hollow sphere whose inner sphere is oriented like the outer one.)
@@ -351,7 +337,7 @@ fn check_components_outward(
     for t in picks {
         // 1% of the triangle's size off its centroid: its own solid angle is ≈ 2π on the near side
         let p = centroids[t] + normals[t] * (0.01 * (2.0 * areas[t]).sqrt().min(longest[t]));
-        let winding = winding_number(vertices, triangles, p);
+        let winding = crate::bodies::winding_number(vertices, triangles, p);
         if winding > 0.5 {
             return Err(MeshError::ComponentInward {
                 triangle: t,

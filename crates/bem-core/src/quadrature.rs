@@ -29,7 +29,7 @@ pub const SEVEN_POINT_RULE: [([f64; 3], f64); 7] = {
 ///
 /// A (sub)triangle seen from the collocation point at a centroid distance of at least
 /// `near_factor` × its longest edge is integrated with the 7-point rule, accurate there to about
-/// 1e-5 of its contribution (the a-priori error estimate, DESIGN.md); closer ones are split 1→4
+/// 1e-5 of its contribution (the a-priori error estimate, `docs/design/solve.md`); closer ones are split 1→4
 /// at the edge midpoints. The depth of this subdivision is limited per pair from the geometry and
 /// the tolerance: `ceil(log2(near_factor · longest / max(gap, tolerance · longest))) + 2` levels
 /// (gap = distance from the point to the element), which lets every pair with
@@ -40,7 +40,7 @@ pub const SEVEN_POINT_RULE: [([f64; 3], f64); 7] = {
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct QuadratureParams {
     /// A (sub)triangle is split 1→4 while the collocation point is closer to its centroid than
-    /// `near_factor` × its longest edge. Default 2.0 (DESIGN.md); 0 disables subdivision.
+    /// `near_factor` × its longest edge. Default 2.0 (`docs/design/solve.md`); 0 disables subdivision.
     pub near_factor: f64,
     /// Hard cap on the subdivision depth (each level replaces a split triangle by 4); 0 disables
     /// subdivision. Default 40: the limit derived from `tolerance` is lower (17 at 1e-4).

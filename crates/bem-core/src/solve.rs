@@ -1,72 +1,15 @@
-//! Solving mixed problems: parameters, solutions, the general `solve`.
+//! Solving mixed problems: solutions, the solve of an assembled system, the general `solve`.
 
+use faer::Mat;
 use glam::DVec3;
 
+use crate::assembly::LinearSystem;
 use crate::budget::SOLVE_BLOCK;
+use crate::params::Precision;
 use crate::{
-    BemError, BoundaryCondition, Control, DenseLu, ElementKind, LinearSystem, Loads,
-    MAX_MIXED_CONDITION, Material, MixedLu, QuadratureParams, RigidModes, Stage, SurfaceMesh,
-    tangent_frame,
+    BemError, BoundaryCondition, Control, DenseLu, DenseMatrix, ElementKind, Loads,
+    MAX_MIXED_CONDITION, Material, MixedLu, SolveParams, Stage, SurfaceMesh, tangent_frame,
 };
-
-/// Default of [`SolveParams::max_condition`]: solves whose estimated condition number (columns
-/// scaled to unit 1-norm, [`crate::DenseLu::condition_estimate`]) exceeds 1e8 are refused.
-///
-/// Measured: healthy problems 3e2 (two held spheres) to 8e3 (the bundled faces: MediaPipe 2.5e3,
-/// ICT 2500 7.8e3, Lee Perry-Smith 6.3e3); a paper-thin face shell (MediaPipe at offset 0.0005,
-/// responses 27× the muscles' motion) 8.9e5; ICT simulated with its rolled-in lids and lips
-/// 4.9e4; a sphere that nothing holds next to a fixed one 1.5e9 (at 80 elements each; the
-/// finer the mesh the more exactly singular). At κ = 1e8 the LU alone may cost 8 of 16 digits
-/// and the discretisation error is amplified accordingly.
-pub const DEFAULT_MAX_CONDITION: f64 = 1e8;
-
-/// Parameters of a solve.
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
-pub struct SolveParams {
-    /// Quadrature of the off-diagonal blocks.
-    pub quadrature: QuadratureParams,
-    /// Pure-traction problems: reject (default) or fix the rigid modes.
-    pub rigid_modes: RigidModes,
-    /// Largest accepted condition estimate ([`crate::DenseLu::condition_estimate`]) of K; above
-    /// it the solve fails with [`BemError::IllConditioned`]. Default [`DEFAULT_MAX_CONDITION`];
-    /// `f64::INFINITY` accepts anything.
-    pub max_condition: f64,
-    /// Memory the assembly and solve may use, in bytes ([`crate::MemoryEstimate`]); above it
-    /// [`LinearSystem::assemble`] fails with [`BemError::OverBudget`] before allocating K.
-    /// `None` (default): the memory the operating system reports available (Linux
-    /// `MemAvailable`; unchecked where unknown).
-    pub memory_budget_bytes: Option<u64>,
-    /// Precision of the LU ([`Precision::Mixed`] by default).
-    pub precision: Precision,
-}
-
-/// Precision of the dense LU.
-///
-/// ```
-/// assert_eq!(bem_core::SolveParams::default().precision, bem_core::Precision::Mixed);
-/// ```
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
-pub enum Precision {
-    /// The LU in f32 with the answer refined to f64 accuracy ([`crate::MixedLu`]), falling
-    /// back to [`Precision::Double`] where that does not converge or the f32 copy does not fit
-    /// the memory budget: about half the factorisation time, 1.5 times K's memory.
-    #[default]
-    Mixed,
-    /// The LU in f64, in place ([`crate::DenseLu`]).
-    Double,
-}
-
-impl Default for SolveParams {
-    fn default() -> Self {
-        Self {
-            quadrature: QuadratureParams::default(),
-            rigid_modes: RigidModes::default(),
-            max_condition: DEFAULT_MAX_CONDITION,
-            memory_budget_bytes: None,
-            precision: Precision::Mixed,
-        }
-    }
-}
 
 /// What the solver measured about the trustworthiness of its answer.
 #[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize, serde::Deserialize)]
@@ -122,93 +65,19 @@ impl LinearSystem {
         if precision == Precision::Mixed {
             let lu = MixedLu::factor_with(matrix, control)?;
             control.check()?;
-            let estimate = if lu.is_usable() {
-                lu.condition_estimate().unwrap_or(f64::INFINITY)
-            } else {
-                f64::INFINITY
-            };
-            if estimate <= MAX_MIXED_CONDITION && estimate <= max_condition {
-                let original = rhs.clone();
-                control.report(Stage::Solve, 0, count);
-                let mut start = 0;
-                let mut stalled = false;
-                while start < count {
-                    let width = SOLVE_BLOCK.min(count - start);
-                    match lu.solve_in_place(rhs.as_mut().subcols_mut(start, width)) {
-                        Ok(_) => {}
-                        Err(BemError::RefinementStalled { .. }) => {
-                            stalled = true;
-                            break;
-                        }
-                        Err(e) => return Err(e),
-                    }
-                    start += width;
-                    control.report(Stage::Solve, start, count);
-                }
-                if stalled {
-                    rhs = original;
-                } else {
-                    used = Precision::Mixed;
-                    condition_estimate = estimate;
-                }
+            if let Some(estimate) = solve_mixed(&lu, &mut rhs, max_condition, control)? {
+                used = Precision::Mixed;
+                condition_estimate = estimate;
             }
             matrix = lu.into_matrix();
         }
         if used == Precision::Double {
-            let lu = DenseLu::factor_with(matrix, control)?;
-            control.check()?;
-            condition_estimate = lu.condition_estimate()?;
-            if condition_estimate.is_nan() || condition_estimate > max_condition {
-                return Err(BemError::IllConditioned {
-                    estimate: condition_estimate,
-                    limit: max_condition,
-                });
-            }
-            control.report(Stage::Solve, 0, count);
-            // in blocks of right-hand sides: the solve's scratch copy stays one block
-            let mut start = 0;
-            while start < count {
-                let width = SOLVE_BLOCK.min(count - start);
-                lu.solve_in_place(rhs.as_mut().subcols_mut(start, width))?;
-                start += width;
-                control.report(Stage::Solve, start, count);
-            }
+            condition_estimate = solve_double(matrix, &mut rhs, max_condition, control)?;
         } else {
             drop(matrix);
         }
         control.report(Stage::Solve, count, count);
-        let n = kinds.len();
-        let solutions = (0..count)
-            .map(|r| {
-                let mut displacement = Vec::with_capacity(n);
-                let mut traction = Vec::with_capacity(n);
-                for (e, &kind) in kinds.iter().enumerate() {
-                    let x = DVec3::new(rhs[(3 * e, r)], rhs[(3 * e + 1, r)], rhs[(3 * e + 2, r)]);
-                    let known = loads.get(e, r);
-                    match kind {
-                        ElementKind::Displacement => {
-                            displacement.push(known);
-                            traction.push(x);
-                        }
-                        ElementKind::Traction => {
-                            displacement.push(x);
-                            traction.push(known);
-                        }
-                        ElementKind::Sliding => {
-                            let normal = normals[e];
-                            let (t1, t2) = tangent_frame(normal);
-                            let un = normal * known.dot(normal);
-                            displacement.push(un + t1 * x.y + t2 * x.z);
-                            traction.push(normal * x.x + (known - un));
-                        }
-                    }
-                }
-                Solution {
-                    displacement,
-                    traction,
-                }
-            })
-            .collect();
+        let solutions = unpack_solutions(&rhs, &kinds, &normals, &loads);
         Ok((
             solutions,
             SolveReport {
@@ -218,6 +87,123 @@ impl LinearSystem {
             },
         ))
     }
+}
+
+/// Solves all right-hand sides in place with the mixed-precision LU, block by block, when its
+/// condition estimate is within both [`MAX_MIXED_CONDITION`] and `max_condition`: returns that
+/// estimate, or `None` (with `rhs` unchanged) when the estimate is too large or the refinement
+/// stalled, for the f64 LU to take over.
+fn solve_mixed(
+    lu: &MixedLu,
+    rhs: &mut Mat<f64>,
+    max_condition: f64,
+    control: &Control<'_>,
+) -> Result<Option<f64>, BemError> {
+    let count = rhs.ncols();
+    let estimate = if lu.is_usable() {
+        lu.condition_estimate().unwrap_or(f64::INFINITY)
+    } else {
+        f64::INFINITY
+    };
+    if estimate <= MAX_MIXED_CONDITION && estimate <= max_condition {
+        let original = rhs.clone();
+        control.report(Stage::Solve, 0, count);
+        let mut start = 0;
+        let mut stalled = false;
+        while start < count {
+            let width = SOLVE_BLOCK.min(count - start);
+            match lu.solve_in_place(rhs.as_mut().subcols_mut(start, width)) {
+                Ok(_) => {}
+                Err(BemError::RefinementStalled { .. }) => {
+                    stalled = true;
+                    break;
+                }
+                Err(e) => return Err(e),
+            }
+            start += width;
+            control.report(Stage::Solve, start, count);
+        }
+        if stalled {
+            *rhs = original;
+            Ok(None)
+        } else {
+            Ok(Some(estimate))
+        }
+    } else {
+        Ok(None)
+    }
+}
+
+/// Factorises K in f64 and solves all right-hand sides in place, in blocks; fails with
+/// [`BemError::IllConditioned`] above `max_condition`. Returns the condition estimate.
+fn solve_double(
+    matrix: DenseMatrix,
+    rhs: &mut Mat<f64>,
+    max_condition: f64,
+    control: &Control<'_>,
+) -> Result<f64, BemError> {
+    let count = rhs.ncols();
+    let lu = DenseLu::factor_with(matrix, control)?;
+    control.check()?;
+    let condition_estimate = lu.condition_estimate()?;
+    if condition_estimate.is_nan() || condition_estimate > max_condition {
+        return Err(BemError::IllConditioned {
+            estimate: condition_estimate,
+            limit: max_condition,
+        });
+    }
+    control.report(Stage::Solve, 0, count);
+    // in blocks of right-hand sides: the solve's scratch copy stays one block
+    let mut start = 0;
+    while start < count {
+        let width = SOLVE_BLOCK.min(count - start);
+        lu.solve_in_place(rhs.as_mut().subcols_mut(start, width))?;
+        start += width;
+        control.report(Stage::Solve, start, count);
+    }
+    Ok(condition_estimate)
+}
+
+/// Displacement and traction of every element for each load case, from the solved unknowns
+/// (`rhs`, one column per load case) and the prescribed values.
+fn unpack_solutions(
+    rhs: &Mat<f64>,
+    kinds: &[ElementKind],
+    normals: &[DVec3],
+    loads: &Loads,
+) -> Vec<Solution> {
+    let n = kinds.len();
+    (0..rhs.ncols())
+        .map(|r| {
+            let mut displacement = Vec::with_capacity(n);
+            let mut traction = Vec::with_capacity(n);
+            for (e, &kind) in kinds.iter().enumerate() {
+                let x = DVec3::new(rhs[(3 * e, r)], rhs[(3 * e + 1, r)], rhs[(3 * e + 2, r)]);
+                let known = loads.get(e, r);
+                match kind {
+                    ElementKind::Displacement => {
+                        displacement.push(known);
+                        traction.push(x);
+                    }
+                    ElementKind::Traction => {
+                        displacement.push(x);
+                        traction.push(known);
+                    }
+                    ElementKind::Sliding => {
+                        let normal = normals[e];
+                        let (t1, t2) = tangent_frame(normal);
+                        let un = normal * known.dot(normal);
+                        displacement.push(un + t1 * x.y + t2 * x.z);
+                        traction.push(normal * x.x + (known - un));
+                    }
+                }
+            }
+            Solution {
+                displacement,
+                traction,
+            }
+        })
+        .collect()
 }
 
 /// Solves one mixed problem with a boundary condition per element.

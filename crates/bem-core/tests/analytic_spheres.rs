@@ -1,4 +1,4 @@
-//! Hollow and solid spheres against closed-form elasticity solutions (DESIGN.md accuracy table).
+//! Hollow and solid spheres against closed-form elasticity solutions (the accuracy table in `docs/design/solve.md`).
 
 use bem_core::{
     BoundaryCondition, Control, Material, RigidModes, SolveParams, SurfaceMesh, shapes, solve,
@@ -39,7 +39,7 @@ fn lame_exact(a: f64, b: f64, p: f64, m: &Material) -> Radial {
 }
 
 /// Mean relative radial displacement error over elements `range` against the exact field at the
-/// nominal radius `r` of that surface (the convention of the DESIGN.md figures: comparing at the
+/// nominal radius `r` of that surface (the convention of the figures of `docs/design/solve.md`: comparing at the
 /// centroid radius instead adds the polyhedral inset, ≈ 1.2% on the inner sphere at 640 elements).
 fn mean_radial_error(
     mesh: &SurfaceMesh,
@@ -121,8 +121,8 @@ fn hollow_sphere_mixed_nu_049_below_one_percent_and_converges() {
 
 #[test]
 fn hollow_sphere_mixed_nu_03_converges_at_rate_one() {
-    // DESIGN.md gives no ν = 0.3 figure for the mixed problem (measured: 3.5% at 640, 1.7% at
-    // 2560). Held to DESIGN.md's convergence statement instead: rate ≥ 1 in h (h halves from 640
+    // `docs/design/solve.md` gives no ν = 0.3 figure for the mixed problem (measured: 3.5% at 640, 1.7% at
+    // 2560). Held to its convergence statement instead: rate ≥ 1 in h (h halves from 640
     // to 2560 elements), and to a 5% sanity bound at 640.
     let coarse = mixed_outer_error(1.0, 2.0, 2, 0.3);
     let fine = mixed_outer_error(1.0, 2.0, 3, 0.3);
@@ -203,7 +203,7 @@ fn pure_traction_is_rejected_without_gauge_fixing() {
 
 /// Solid sphere with u = εx prescribed at the centroids: mean traction error against σ·n_e (n_e the
 /// flat element's normal, for which σ·n_e is exact on the polyhedron), normalised by the largest
-/// exact traction ε(λ+2μ) — the normalisation that reproduces the DESIGN.md figures (normalising
+/// exact traction ε(λ+2μ) — the normalisation that reproduces the figures of `docs/design/solve.md` (normalising
 /// element by element by |σ·n_e| gives 2.9% / 1.4% instead).
 fn solid_sphere_traction_error(subdivisions: u32) -> f64 {
     let mesh = shapes::sphere(subdivisions, 1.0).expect("valid sphere");

@@ -112,6 +112,42 @@ pub fn fmt_p(p: &DVec3) -> String {
     format!("({}, {}, {})", sig6(p.x), sig6(p.y), sig6(p.z))
 }
 
+/// Largest absolute coordinate accepted in a face mesh (any unit: a face is about 2·10⁸
+/// nanometres across). Larger values are not a face and overflow the geometry's squared
+/// lengths ([`PrepError::CoordinateTooLarge`]).
+pub const MAX_COORDINATE: f64 = 1e9;
+
+/// What is wrong with a glTF/GLB file.
+#[derive(Debug, thiserror::Error)]
+pub enum GltfError {
+    /// The GLB container is malformed.
+    #[error("GLB container: {0}")]
+    Glb(String),
+    /// The JSON does not parse as a glTF document.
+    #[error("glTF JSON: {0}")]
+    Json(String),
+    /// A buffer cannot be loaded.
+    #[error("buffer {index} (uri {uri}): {reason}")]
+    Buffer {
+        /// Buffer index.
+        index: usize,
+        /// Its URI, shortened for display (`<GLB binary chunk>` when it has none).
+        uri: String,
+        /// What is wrong.
+        reason: String,
+    },
+    /// An object of the document is invalid (index out of range, bad type, out of bounds...).
+    #[error("{what} {index}: {reason}")]
+    Invalid {
+        /// Kind of object (`accessor`, `bufferView`, `node`, `scene`, `mesh`).
+        what: &'static str,
+        /// Its index.
+        index: usize,
+        /// What is wrong.
+        reason: String,
+    },
+}
+
 /// Everything that can go wrong turning a face mesh into a rig.
 #[derive(Debug, thiserror::Error)]
 pub enum PrepError {
@@ -139,7 +175,7 @@ pub enum PrepError {
     },
     /// The glTF/GLB document is malformed, or a buffer cannot be read safely.
     #[error("glTF error: {0}")]
-    Gltf(#[from] crate::gltf_read::GltfError),
+    Gltf(#[from] GltfError),
     /// The input path is not a regular file (a folder, FIFO or device is not opened).
     #[error("{path} is not a regular file")]
     NotAFile {
@@ -204,11 +240,11 @@ pub enum PrepError {
         /// Its coordinates.
         position: [f64; 3],
     },
-    /// A vertex lies absurdly far from the origin (beyond [`crate::limits::MAX_COORDINATE`]).
+    /// A vertex lies absurdly far from the origin (beyond [`MAX_COORDINATE`]).
     #[error(
         "input position {input_index} is absurdly far from the origin: {} (limit {:e} in any unit)",
         fmt_p(&DVec3::from(*position)),
-        crate::limits::MAX_COORDINATE
+        MAX_COORDINATE
     )]
     CoordinateTooLarge {
         /// Index of the position in the input (OBJ `v` order, 0-based).

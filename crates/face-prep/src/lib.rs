@@ -15,37 +15,30 @@
 //! assert!(!rig.muscles[zyg].front_chain.is_empty());
 //! ```
 
-pub mod anatomy;
 pub mod atomic_write;
 pub mod bvh;
 pub mod closest_point;
-mod controls;
+pub mod controls;
 pub mod error;
-pub mod eyelid;
-mod face_mesh;
-pub mod features;
-pub mod force_controls;
-pub mod gltf_read;
-pub mod jaw;
-pub mod limits;
-pub mod modiolus;
-pub mod muscle_file;
-pub mod muscle_kind;
-pub mod muscle_model;
-pub mod muscles;
-pub mod orient;
+pub mod frame;
+pub mod input;
 mod rig;
 pub mod shell;
-pub mod teeth;
-pub mod topology;
-pub mod units;
+
+// The stages' modules under their short historical paths (`face_prep::orient`, ...).
+pub use controls::{
+    anatomy, eyelid, force_controls, ids, jaw, modiolus, muscle_file, muscle_kind, muscle_model,
+    muscles, teeth,
+};
+pub use frame::{features, orient, topology};
+pub use input::{gltf_read, limits, units};
 
 pub use error::{LoopSummary, MuscleFileError, PrepError};
-pub use face_mesh::{
-    FaceMesh, GltfFaceData, gltf_face_data, load_face, load_face_mesh_named, load_face_with_limits,
-};
 pub use features::{Box2, FeatureBoxes};
 pub use gltf_read::GltfError;
+pub use input::face_mesh::{
+    FaceMesh, GltfFaceData, gltf_face_data, load_face, load_face_mesh_named, load_face_with_limits,
+};
 pub use limits::InputLimits;
 pub use muscle_kind::{ControlSpec, Generator, MuscleKind, Placed, Side};
 pub use muscles::Muscle;

@@ -1,16 +1,16 @@
 //! The face rig: everything the BEM needs, built from one face mesh.
 
 use crate::bvh::TriangleBvh;
+use crate::controls::muscle_kind::MuscleKind;
+use crate::controls::muscle_model::{AnatomicalParams, MuscleModel};
+use crate::controls::muscles::{Muscle, place_standard_muscles, skull_elements};
 use crate::error::PrepError;
-use crate::face_mesh::FaceMesh;
-use crate::features::FeatureBoxes;
-use crate::muscle_kind::MuscleKind;
-use crate::muscle_model::{AnatomicalParams, MuscleModel};
-use crate::muscles::{Muscle, place_standard_muscles, skull_elements};
-use crate::orient::{FaceLoops, canonical_frame, loop_centroid};
+use crate::frame::features::FeatureBoxes;
+use crate::frame::orient::{FaceLoops, canonical_frame, loop_centroid};
+use crate::frame::topology;
+use crate::input::face_mesh::FaceMesh;
+use crate::input::units::{LengthUnit, UnitChoice, Units};
 use crate::shell::{ElementTag, Shell, ShellDims};
-use crate::topology;
-use crate::units::{LengthUnit, UnitChoice, Units};
 use glam::{DAffine3, DVec3};
 use serde::{Deserialize, Serialize};
 use std::collections::HashSet;
@@ -51,7 +51,7 @@ pub struct RigParams {
     /// Default 30.
     pub front_repair_rounds: usize,
     /// The length unit of the mesh coordinates, or [`Units::Auto`] (default) to estimate it
-    /// from the distance between the eyes ([`crate::units`]).
+    /// from the distance between the eyes ([`crate::input::units`]).
     pub units: Units,
     /// How muscles become prescribed displacements ([`MuscleModel`]; default anatomical).
     pub muscle_model: MuscleModel,
@@ -367,7 +367,7 @@ impl FaceRig {
     }
 
     /// Prescribed per-element displacement of muscle `muscle_index` at slider = +1 (canonical
-    /// frame; see [`crate::muscles::muscle_pattern`]). Empty if the index is out of range.
+    /// frame; see [`crate::controls::muscles::muscle_pattern`]). Empty if the index is out of range.
     pub fn muscle_pattern(&self, muscle_index: usize) -> Vec<(u32, DVec3)> {
         match self.muscles.get(muscle_index) {
             Some(m) => self.control_pattern(m),

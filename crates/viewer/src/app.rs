@@ -1,7 +1,7 @@
 //! The eframe application: panels, sliders, presets, viewport interaction, background opening,
 //! rig computation (cached) and exports.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
@@ -9,25 +9,29 @@ use eframe::egui;
 use face_prep::{Box2, FaceMesh};
 use facebem::Control;
 use facebem::MuscleBasis;
-use facebem::open::{CacheStatus, Opened};
+use facebem::input::{CacheStatus, Opened};
 use facebem::{FaceModel, PipelineParams};
-use glam::DVec3;
 
 use crate::camera::OrbitCamera;
 pub use crate::export::ExportKind;
-use crate::export::{ExportRequest, write_export};
 use crate::job::Job;
-use crate::overlay::{OverlayOptions, RigGeometry, overlay_lines};
+use crate::overlay::{OverlayOptions, RigGeometry};
 use crate::picking::TriangleHit;
 use crate::posed_mesh::{MeshVertex, PosedMesh, bounding_sphere, edge_indices};
 use crate::renderer::{LineVertex, ReadBackError};
-use crate::source;
 
 mod box_drag;
 mod dialogs;
+mod exports;
+mod jobs;
 mod panels;
+mod pose;
 mod rig_editing;
 mod viewport;
+
+pub use exports::{expand_home, home_relative};
+use jobs::{default_face_opened, file_name};
+pub use pose::preset_label;
 
 /// Viewport clear colour (display values, written as is).
 pub const BACKGROUND: [f32; 3] = [0.11, 0.12, 0.14];
@@ -39,7 +43,7 @@ const SELECTION: [f32; 4] = [1.0, 0.85, 0.1, 1.0];
 pub struct ViewerOptions {
     /// Face or rig file to open; `None` opens the bundled default face.
     pub open: Option<PathBuf>,
-    /// Rig cache folder; `None` = [`facebem::open::default_cache_dir`]
+    /// Rig cache folder; `None` = [`facebem::input::default_cache_dir`]
     /// (`$XDG_CACHE_HOME/facebem` or `~/.cache/facebem`).
     pub cache_dir: Option<PathBuf>,
     /// Written (atomically) once a face has been drawn, for scripts and the Xvfb test.
@@ -186,7 +190,7 @@ impl ViewerApp {
             Some(Some(path)) => {
                 app.open_path = path.display().to_string();
                 Some(
-                    facebem::open::open(&path)
+                    facebem::input::open(&path)
                         .map(|o| (file_name(&path), o))
                         .map_err(|e| e.to_string()),
                 )
@@ -198,31 +202,6 @@ impl ViewerApp {
             app.opened(&cc.egui_ctx, result);
         }
         app
-    }
-
-    /// Starts opening `path` (face or saved rig) in the background; the current face stays
-    /// usable meanwhile. A face without rig is shown at once and its rig computed (or loaded
-    /// from the cache) by a second job.
-    pub fn open(&mut self, ctx: &egui::Context, path: PathBuf) {
-        let job = Job::spawn(
-            format!("Opening {}", file_name(&path)),
-            Some(ctx.clone()),
-            move |ctl| {
-                ctl.report("reading", 0.0);
-                let opened = facebem::open::open(&path).map_err(|e| e.to_string())?;
-                ctl.report("read", 1.0);
-                Ok((file_name(&path), opened))
-            },
-        );
-        self.loading = Some(job);
-    }
-
-    /// Starts opening the bundled default face (compiled into the program).
-    pub fn open_default_face(&mut self, ctx: &egui::Context) {
-        let job = Job::spawn("Opening the default face", Some(ctx.clone()), move |_| {
-            default_face_opened()
-        });
-        self.loading = Some(job);
     }
 
     /// Displays `basis` without a rig (sliders reset to 0, camera framed on it).
@@ -309,63 +288,6 @@ impl ViewerApp {
         &self.sliders
     }
 
-    /// Sets every slider at once (clamped to −1…1; extra or missing values are ignored) and
-    /// re-blends the pose, as moving the sliders would.
-    pub fn set_sliders(&mut self, values: &[f64]) {
-        self.active_preset = None;
-        for (s, v) in self.sliders.iter_mut().zip(values) {
-            *s = if v.is_finite() {
-                v.clamp(-1.0, 1.0)
-            } else {
-                0.0
-            };
-        }
-        self.repose();
-    }
-
-    /// Applies the preset called `name`: a facebem preset ([`facebem::presets::find`]) or an
-    /// ARKit / VRM 1.0 name ([`facebem::expression_sets::find`], from the controls the rig has);
-    /// false if unknown or the rig has none of its controls.
-    pub fn apply_preset(&mut self, name: &str) -> bool {
-        let Some(face) = &self.face else { return false };
-        let ids = &face.basis.muscle_ids;
-        let (sliders, name) = if let Some(p) = facebem::presets::find(name) {
-            (p.sliders_for(ids), p.name)
-        } else if let Some(e) = facebem::expression_sets::find(name) {
-            let Some(r) = e.resolve(ids) else {
-                return false;
-            };
-            (r.sliders, e.name)
-        } else {
-            return false;
-        };
-        self.sliders = sliders;
-        self.active_preset = Some(name);
-        self.repose();
-        true
-    }
-
-    /// The preset the sliders are set to, until a slider moves (highlighted in the UI).
-    pub fn active_preset(&self) -> Option<&'static str> {
-        self.active_preset
-    }
-
-    /// Whether the export buttons are enabled: a rig is displayed (the face has muscles), and
-    /// no rig computation or export is running. `Err` says why not (the buttons' tooltip).
-    pub fn exports_ready(&self) -> Result<(), &'static str> {
-        match &self.face {
-            None => Err("No face is open"),
-            Some(_) if self.rigging.is_some() => {
-                Err("The muscle rig is being computed; exports are enabled when it is ready")
-            }
-            Some(f) if f.basis.muscle_count() == 0 => {
-                Err("The face has no muscle rig yet: exports are enabled when it is ready")
-            }
-            Some(_) if self.exporting.is_some() => Err("An export is being written"),
-            Some(_) => Ok(()),
-        }
-    }
-
     /// The vertices handed to the renderer in the last frame (CPU blend of the basis).
     pub fn uploaded_vertices(&self) -> &[MeshVertex] {
         &self.uploaded_vertices
@@ -416,21 +338,6 @@ impl ViewerApp {
         self.refresh_overlays();
     }
 
-    /// Sets the folder exports are written to (shown relative to the home folder, `~/…`).
-    pub fn set_export_dir(&mut self, dir: &Path) {
-        self.export_dir = home_relative(dir);
-    }
-
-    /// The export folder as the UI shows it (`~/…` under the home folder).
-    pub fn export_dir_text(&self) -> &str {
-        &self.export_dir
-    }
-
-    /// The export folder as a path (`~` expanded).
-    pub fn export_dir(&self) -> PathBuf {
-        expand_home(self.export_dir.trim())
-    }
-
     /// The camera (for tests and scripted views).
     pub fn camera_mut(&mut self) -> &mut OrbitCamera {
         &mut self.camera
@@ -451,36 +358,6 @@ impl ViewerApp {
         self.selection.as_ref()
     }
 
-    /// Starts writing the current face in the background (`kind` says what); the outcome is
-    /// reported in the status message.
-    pub fn export(&mut self, ctx: &egui::Context, kind: ExportKind) {
-        if let Err(why) = self.exports_ready() {
-            self.error(format!("{}: {why}", kind.label()));
-            return;
-        }
-        let Some(face) = &self.face else { return };
-        let stem = Path::new(&face.name)
-            .file_stem()
-            .map_or_else(|| "face".to_owned(), |s| s.to_string_lossy().into_owned());
-        let dir = self.export_dir();
-        let basis = face.basis.clone();
-        let model = face.model.clone();
-        let sliders = self.sliders.clone();
-        let job = Job::spawn(kind.label(), Some(ctx.clone()), move |ctl| {
-            ctl.report("writing", 0.0);
-            let request = ExportRequest {
-                dir,
-                stem,
-                basis,
-                model,
-                sliders,
-            };
-            let path = write_export(kind, &request).map_err(|e| e.to_string())?;
-            Ok(format!("Exported {}", path.display()))
-        });
-        self.exporting = Some(job);
-    }
-
     fn error(&mut self, text: String) {
         self.message = Some(StatusMessage {
             text,
@@ -493,212 +370,6 @@ impl ViewerApp {
             text,
             is_error: false,
         });
-    }
-
-    fn set_lines(&mut self, lines: Vec<LineVertex>) {
-        self.lines = Arc::new(lines);
-        self.lines_generation += 1;
-    }
-
-    fn refresh_overlays(&mut self) {
-        let mut lines = Vec::new();
-        let selected_element = self.selection.as_ref().and_then(|s| s.element);
-        if let Some(face) = &self.face {
-            if let (Some(model), Some(geo)) = (&face.model, &face.rig_geometry) {
-                let edited = self.edited_boxes().and_then(Result::ok);
-                // Overlays follow the pose: every shell vertex moves by its own response
-                // (the simulated surface's, also on a reduced copy), in the user's frame.
-                let response = &model.shell_vertex_response;
-                let posed_geo = (response.len() == self.sliders.len()
-                    && response.iter().all(|r| r.len() == geo.vertices.len()))
-                .then(|| {
-                    let linear = geo.input_from_canonical.matrix3;
-                    let mut g = (**geo).clone();
-                    for (k, &s) in self.sliders.iter().enumerate() {
-                        if s != 0.0 {
-                            for (p, u) in g.vertices.iter_mut().zip(&response[k]) {
-                                *p += linear * (s * *u);
-                            }
-                        }
-                    }
-                    g
-                });
-                lines = overlay_lines(
-                    &model.rig,
-                    posed_geo.as_ref().unwrap_or(geo),
-                    &self.overlays,
-                    selected_element,
-                    self.params.muscles.as_deref(),
-                    edited.as_ref(),
-                );
-            }
-            // Without a rig element, outline the picked triangle of the displayed mesh.
-            if let Some(sel) = &self.selection
-                && sel.element.is_none()
-                && let Some(t) = face.basis.triangles.get(sel.hit.triangle)
-            {
-                let p: Vec<DVec3> = t
-                    .iter()
-                    .filter_map(|&i| self.posed.positions_f64().get(i as usize).copied())
-                    .collect();
-                for k in 0..p.len() {
-                    for q in [p[k], p[(k + 1) % p.len()]] {
-                        lines.push(LineVertex {
-                            position: q.as_vec3().to_array(),
-                            color: SELECTION,
-                        });
-                    }
-                }
-            }
-        }
-        self.set_lines(lines);
-    }
-
-    fn repose(&mut self) {
-        let Some(face) = &self.face else { return };
-        if let Err(e) = self.posed.update(&face.basis, &self.sliders) {
-            let text = format!("Cannot pose {}: {e}", face.name);
-            self.error(text);
-        }
-        if self.face.as_ref().is_some_and(|f| f.model.is_some()) {
-            self.refresh_overlays();
-        }
-    }
-
-    fn poll_jobs(&mut self, ctx: &egui::Context) {
-        if let Some(job) = &mut self.exporting
-            && let Some(result) = job.poll()
-        {
-            let label = job.label().to_owned();
-            self.exporting = None;
-            match result {
-                Ok(text) => self.info(text),
-                Err(e) => self.error(format!("{label} failed: {e}")),
-            }
-        }
-        if let Some(job) = &mut self.loading
-            && let Some(result) = job.poll()
-        {
-            self.loading = None;
-            self.opened(ctx, result);
-        }
-        if let Some(r) = &mut self.rigging
-            && let Some(result) = r.job.poll()
-        {
-            let topology_id = r.topology_id;
-            self.rigging = None;
-            let same_face = self
-                .face
-                .as_ref()
-                .is_some_and(|f| f.topology_id == topology_id);
-            match result {
-                // A rig for a face that was replaced meanwhile is dropped.
-                Ok(_) if !same_face => {}
-                Ok((model, status)) => {
-                    let name = self
-                        .face
-                        .as_ref()
-                        .map(|f| f.name.clone())
-                        .unwrap_or_default();
-                    let text = match &status {
-                        CacheStatus::Loaded => format!(
-                            "Rig of {name} loaded from the cache ({} muscles)",
-                            model.basis.muscle_count()
-                        ),
-                        CacheStatus::Computed { save_error, .. } => format!(
-                            "Rig of {name} computed in {:.1} s ({} elements{}){}",
-                            model.report.prep_seconds
-                                + model.report.solve_seconds
-                                + model.report.transfer_seconds,
-                            model.report.shell_elements,
-                            model
-                                .report
-                                .simplify_path
-                                .map(|p| format!(
-                                    "; {} triangles simulated, simplified {}",
-                                    model.report.simulated_triangles,
-                                    p.describe()
-                                ))
-                                .unwrap_or_default(),
-                            save_error
-                                .as_ref()
-                                .map(|e| format!("; not cached: {e}"))
-                                .unwrap_or_default()
-                        ),
-                    };
-                    let warnings = model.report.warnings();
-                    self.set_model(name, model);
-                    if warnings.is_empty() {
-                        self.info(text);
-                    } else {
-                        // Shown as an error: these responses are not trustworthy.
-                        self.error(format!("{text}. Warning: {}", warnings.join("; ")));
-                    }
-                }
-                Err(e) => self.error(format!("Rig computation stopped: {e}")),
-            }
-        }
-    }
-
-    /// Shows what a file turned out to hold: a saved rig at once, a face as its preview with
-    /// its rig computed (or loaded from the cache) in the background.
-    fn opened(&mut self, ctx: &egui::Context, result: Result<(String, Opened), String>) {
-        match result {
-            Ok((name, Opened::Model(model))) => {
-                self.info(format!(
-                    "Opened the saved rig {name} ({} triangles, {} muscles)",
-                    model.basis.triangles.len(),
-                    model.basis.muscle_count()
-                ));
-                self.cancel_rig();
-                self.rigging = None;
-                self.set_model(name, *model);
-            }
-            Ok((name, Opened::Face { mesh, obj_source })) => {
-                self.info(format!(
-                    "Opened {name} ({} triangles); computing its muscle rig…",
-                    mesh.triangles.len()
-                ));
-                let basis = source::preview_basis(&mesh);
-                let source = Arc::new((mesh, obj_source));
-                self.params = PipelineParams::default();
-                self.install_face(name, basis, Some(source), None, true);
-                self.rebuild_rig(ctx);
-            }
-            Err(e) => self.error(format!("Could not open: {e}")),
-        }
-    }
-
-    fn automation(&mut self, ctx: &egui::Context) {
-        if self.ready_at.is_none() && self.frames_with_face >= 3 {
-            let wait_for_preset = self.options.preset.is_some() && self.model().is_none();
-            if !wait_for_preset {
-                self.ready_at = Some(Instant::now());
-                if let Some(path) = &self.options.ready_file
-                    && let Err(e) = facebem::write_atomic(path, b"ready\n")
-                {
-                    self.error(format!("Cannot write the ready file: {e}"));
-                }
-            }
-        }
-        if let Some(after) = self.options.exit_after_ready {
-            match self.ready_at {
-                Some(t) if t.elapsed() >= after => {
-                    ctx.send_viewport_cmd(egui::ViewportCommand::Close)
-                }
-                _ => ctx.request_repaint_after(Duration::from_millis(50)),
-            }
-        }
-        if self.options.ready_file.is_some() && self.ready_at.is_none() {
-            ctx.request_repaint_after(Duration::from_millis(50));
-        }
-    }
-
-    fn dropped_files(&mut self, ctx: &egui::Context) {
-        let dropped = ctx.input(|i| i.raw.dropped_files.first().map(|f| f.path().to_path_buf()));
-        if let Some(path) = dropped {
-            self.open(ctx, path);
-        }
     }
 
     /// Draws one frame of the UI (what `eframe::App::ui` calls).
@@ -733,68 +404,6 @@ impl eframe::App for ViewerApp {
     fn ui(&mut self, ui: &mut egui::Ui, _frame: &mut eframe::Frame) {
         self.show(ui);
     }
-}
-
-/// The bundled default face, as [`facebem::open::open`] would return it.
-fn default_face_opened() -> Result<(String, Opened), String> {
-    let mesh = facebem::open::default_face().map_err(|e| e.to_string())?;
-    let obj_source = Some(facebem::open::DEFAULT_FACE_OBJ.to_owned());
-    let name = facebem::open::DEFAULT_FACE_NAME.to_owned();
-    Ok((name, Opened::Face { mesh, obj_source }))
-}
-
-/// The home folder (`$HOME`), if set.
-fn home_dir() -> Option<PathBuf> {
-    std::env::var_os("HOME")
-        .filter(|h| !h.is_empty())
-        .map(PathBuf::from)
-}
-
-/// `dir` as the UI shows it: `~` or `~/rest` under the home folder, else as is.
-///
-/// ```
-/// use viewer::app::{expand_home, home_relative};
-/// if let Some(home) = std::env::var_os("HOME").filter(|h| !h.is_empty()) {
-///     let dir = std::path::Path::new(&home).join("faces");
-///     assert_eq!(home_relative(&dir), "~/faces");
-///     assert_eq!(expand_home("~/faces"), dir);
-/// }
-/// assert_eq!(home_relative("/nonexistent-root/x".as_ref()), "/nonexistent-root/x");
-/// ```
-pub fn home_relative(dir: &Path) -> String {
-    match home_dir().and_then(|h| dir.strip_prefix(h).ok().map(Path::to_path_buf)) {
-        Some(rest) if rest.as_os_str().is_empty() => "~".to_owned(),
-        Some(rest) => format!("~/{}", rest.display()),
-        None => dir.display().to_string(),
-    }
-}
-
-/// The inverse of [`home_relative`]: a leading `~` or `~/` becomes the home folder.
-pub fn expand_home(text: &str) -> PathBuf {
-    let rest = match text.strip_prefix('~') {
-        Some("") => Some(""),
-        Some(r) if r.starts_with('/') => Some(&r[1..]),
-        _ => None,
-    };
-    match (rest, home_dir()) {
-        (Some(rest), Some(home)) => home.join(rest),
-        _ => PathBuf::from(text),
-    }
-}
-
-fn file_name(path: &Path) -> String {
-    path.file_name().map_or_else(
-        || path.display().to_string(),
-        |n| n.to_string_lossy().into_owned(),
-    )
-}
-
-/// Button label of a preset: its name with a capital first letter ("smile" → "Smile").
-pub fn preset_label(name: &str) -> String {
-    let mut c = name.chars();
-    c.next()
-        .map(|f| f.to_uppercase().chain(c).collect())
-        .unwrap_or_default()
 }
 
 /// Display name of a muscle (thesis name for the standard ones).

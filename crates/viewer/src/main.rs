@@ -36,12 +36,12 @@ fn parse_args() -> anyhow::Result<ViewerOptions> {
             Some("--preset") => {
                 let v = args.next().context("--preset needs a name")?;
                 let name = v.to_string_lossy().into_owned();
-                if facebem::presets::find(&name).is_none()
-                    && facebem::expression_sets::find(&name).is_none()
+                if facebem::expressions::presets::find(&name).is_none()
+                    && facebem::expressions::find(&name).is_none()
                 {
                     bail!(
                         "unknown preset {name:?}; known: {}, or an ARKit or VRM 1.0 name",
-                        facebem::presets::names().join(", ")
+                        facebem::expressions::presets::names().join(", ")
                     );
                 }
                 options.preset = Some(name);

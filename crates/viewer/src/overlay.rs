@@ -283,7 +283,7 @@ mod tests {
 
     #[test]
     fn overlays_of_the_default_rig_follow_the_options() {
-        let (mesh, _) = facebem::open::read_face(&crate::source::default_face_path()).unwrap();
+        let (mesh, _) = facebem::input::read_face(&crate::source::default_face_path()).unwrap();
         let prepared = facebem::prepare(&mesh, &facebem::PipelineParams::default()).unwrap();
         let rig = prepared.rig;
         let geo = RigGeometry::new(&rig);

@@ -6,11 +6,11 @@ use std::path::{Path, PathBuf};
 use face_prep::FaceMesh;
 use facebem::MuscleBasis;
 use facebem::PipelineParams;
-use facebem::open::OpenError;
+use facebem::input::OpenError;
 use facebem::{Progress, Stage};
 
 /// The bundled default face's file in the source tree (MediaPipe canonical face, 852 triangles).
-/// The app itself opens the copy compiled into `facebem` ([`facebem::open::DEFAULT_FACE_OBJ`]).
+/// The app itself opens the copy compiled into `facebem` ([`facebem::input::DEFAULT_FACE_OBJ`]).
 pub fn default_face_path() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets/mediapipe_canonical_4loop.obj")
 }
@@ -29,13 +29,13 @@ pub fn preview_basis(mesh: &FaceMesh) -> MuscleBasis {
 
 /// Reads a face file (OBJ, glTF, GLB) as its neutral preview basis.
 pub fn load_neutral(path: &Path) -> Result<MuscleBasis, Box<OpenError>> {
-    let (mesh, _) = facebem::open::read_face(path).map_err(Box::new)?;
+    let (mesh, _) = facebem::input::read_face(path).map_err(Box::new)?;
     Ok(preview_basis(&mesh))
 }
 
 /// Where the viewer caches the model of `mesh` computed with `params`: one file per mesh and
 /// parameter set, `<dir>/<mesh hash>-<params hash>.rig` (so editing parameters and going back
-/// reloads instantly). `dir` defaults to [`facebem::open::default_cache_dir`]
+/// reloads instantly). `dir` defaults to [`facebem::input::default_cache_dir`]
 /// (`$XDG_CACHE_HOME/facebem` or `~/.cache/facebem`).
 pub fn cache_file_for(dir: &Path, mesh: &FaceMesh, params: &PipelineParams) -> PathBuf {
     let hex = |bytes: &[u8]| bytes.iter().map(|b| format!("{b:02x}")).collect::<String>();
@@ -56,7 +56,7 @@ pub fn cache_file_for(dir: &Path, mesh: &FaceMesh, params: &PipelineParams) -> P
 /// use viewer::source::overall_fraction;
 /// let start = overall_fraction(Progress { stage: Stage::Prep, done: 0, total: 1 });
 /// let mid = overall_fraction(Progress { stage: Stage::Factorisation, done: 1, total: 2 });
-/// let end = overall_fraction(Progress { stage: Stage::Transfer, done: 1, total: 1 });
+/// let end = overall_fraction(Progress { stage: Stage::Settle, done: 1, total: 1 });
 /// assert!(start == 0.0 && start < mid && mid < end && end == 1.0);
 /// ```
 pub fn overall_fraction(p: Progress) -> f32 {
@@ -65,7 +65,10 @@ pub fn overall_fraction(p: Progress) -> f32 {
         Stage::Assembly => (0.05, 0.55),
         Stage::Factorisation => (0.55, 0.9),
         Stage::Solves => (0.9, 0.97),
-        Stage::Transfer => (0.97, 1.0),
+        Stage::Transfer => (0.97, 0.98),
+        Stage::Settle => (0.98, 1.0),
+        // A stage added later: shown as done.
+        _ => (1.0, 1.0),
     };
     let f = p.done as f32 / p.total.max(1) as f32;
     start + (end - start) * f.clamp(0.0, 1.0)
@@ -99,7 +102,7 @@ mod tests {
 
     #[test]
     fn cache_file_name_depends_on_mesh_and_parameters() {
-        let (mesh, _) = facebem::open::read_face(&default_face_path()).unwrap();
+        let (mesh, _) = facebem::input::read_face(&default_face_path()).unwrap();
         let dir = Path::new("/cache");
         let p = PipelineParams::default();
         let a = cache_file_for(dir, &mesh, &p);

@@ -5,7 +5,7 @@
 //! Needs `xvfb xauth imagemagick` (apt) and Vulkan lavapipe (`mesa-vulkan-drivers libvulkan1`).
 //! Set `FACEBEM_SKIP_XVFB=1` to skip on a machine without them; CI must not set it.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
 
@@ -37,40 +37,9 @@ fn real_window_under_xvfb_shows_the_face_and_closes_cleanly() {
         return;
     }
     let dir = tempfile::tempdir().unwrap();
-    // Xvfb picks a free display itself and writes its number to the pipe (-displayfd).
-    let mut xvfb = Command::new("Xvfb")
-        .args([
-            "-displayfd",
-            "1",
-            "-screen",
-            "0",
-            "1280x800x24",
-            "-nolisten",
-            "tcp",
-        ])
-        .stdout(Stdio::piped())
-        .stderr(Stdio::null())
-        .spawn()
-        .expect("Xvfb not found: apt-get install xvfb xauth imagemagick (or FACEBEM_SKIP_XVFB=1)");
-    let stdout = xvfb.stdout.take().expect("piped stdout");
-    let _xvfb = KillOnDrop(xvfb);
-    let mut line = String::new();
-    std::io::BufRead::read_line(&mut std::io::BufReader::new(stdout), &mut line)
-        .expect("read the display number from Xvfb");
-    let display_number: u32 = line.trim().parse().expect("Xvfb printed a display number");
-    let display = format!(":{display_number}");
-    let socket = format!("/tmp/.X11-unix/X{display_number}");
-    wait_for("the Xvfb socket", Duration::from_secs(30), || {
-        Path::new(&socket).exists()
-    });
+    let (_xvfb, display) = start_xvfb();
 
-    let runtime = dir.path().join("runtime");
-    std::fs::create_dir(&runtime).unwrap();
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::PermissionsExt;
-        std::fs::set_permissions(&runtime, std::fs::Permissions::from_mode(0o700)).unwrap();
-    }
+    let runtime = private_runtime_dir(dir.path());
     let ready = dir.path().join("ready");
     let mut viewer = Command::new(env!("CARGO_BIN_EXE_viewer"))
         .arg("--ready-file")
@@ -135,6 +104,60 @@ fn real_window_under_xvfb_shows_the_face_and_closes_cleanly() {
     assert_eq!(img.dimensions(), (1280, 800));
     // The window is 1280×800 at the top-left (no window manager). The viewport lies right of
     // the 300-pt control panel; its background is BACKGROUND, the face is skin coloured.
+    let (bg, face, total) = face_coloured_pixels(&img);
+    assert!(
+        face * 10 > total,
+        "only {face} of {total} sampled viewport pixels are face-coloured (background {bg:?})"
+    );
+}
+
+/// Starts Xvfb on a free display and waits for its socket; returns the process (killed when
+/// dropped) and the `DISPLAY` value.
+fn start_xvfb() -> (KillOnDrop, String) {
+    // Xvfb picks a free display itself and writes its number to the pipe (-displayfd).
+    let mut xvfb = Command::new("Xvfb")
+        .args([
+            "-displayfd",
+            "1",
+            "-screen",
+            "0",
+            "1280x800x24",
+            "-nolisten",
+            "tcp",
+        ])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::null())
+        .spawn()
+        .expect("Xvfb not found: apt-get install xvfb xauth imagemagick (or FACEBEM_SKIP_XVFB=1)");
+    let stdout = xvfb.stdout.take().expect("piped stdout");
+    let xvfb = KillOnDrop(xvfb);
+    let mut line = String::new();
+    std::io::BufRead::read_line(&mut std::io::BufReader::new(stdout), &mut line)
+        .expect("read the display number from Xvfb");
+    let display_number: u32 = line.trim().parse().expect("Xvfb printed a display number");
+    let display = format!(":{display_number}");
+    let socket = format!("/tmp/.X11-unix/X{display_number}");
+    wait_for("the Xvfb socket", Duration::from_secs(30), || {
+        Path::new(&socket).exists()
+    });
+    (xvfb, display)
+}
+
+/// A private `XDG_RUNTIME_DIR` (mode 0700, as the spec requires) under `dir`.
+fn private_runtime_dir(dir: &Path) -> PathBuf {
+    let runtime = dir.join("runtime");
+    std::fs::create_dir(&runtime).unwrap();
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        std::fs::set_permissions(&runtime, std::fs::Permissions::from_mode(0o700)).unwrap();
+    }
+    runtime
+}
+
+/// Samples the viewport of the screenshot: the background colour (right edge of the window),
+/// how many sampled pixels differ from it and are skin coloured, and how many were sampled.
+fn face_coloured_pixels(img: &image::RgbaImage) -> ([u8; 4], usize, usize) {
     let bg = img.get_pixel(1270, 400).0;
     let mut face = 0;
     let mut total = 0;
@@ -149,8 +172,5 @@ fn real_window_under_xvfb_shows_the_face_and_closes_cleanly() {
             }
         }
     }
-    assert!(
-        face * 10 > total,
-        "only {face} of {total} sampled viewport pixels are face-coloured (background {bg:?})"
-    );
+    (bg, face, total)
 }

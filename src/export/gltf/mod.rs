@@ -7,7 +7,7 @@
 //!
 //! 1. the ARKit blendshapes the rig can make, by their ARKit names (`mouthSmileLeft`, …), then
 //!    the VRM 1.0 presets (`happy`, `aa`, `blinkLeft`, …, `neutral` as a zero target) — see
-//!    [`crate::expression_sets`]. Names whose controls the rig lacks entirely are left out and
+//!    [`crate::expressions`]. Names whose controls the rig lacks entirely are left out and
 //!    listed with the reason in `mesh.extras.leftOutTargets`; names made from only some of
 //!    their controls are listed with the missing ones in `mesh.extras.partialTargets`;
 //! 2. facebem's own: `<muscle id>_contract` (slider −1) and `<muscle id>_relax` (slider +1) for
@@ -31,15 +31,17 @@
 //! facebem's own names are not exported).
 
 mod buffer;
+mod targets;
 
 use glam::DVec3;
 use serde_json::{Map, Value, json};
 
 use super::layout::ExportLayout;
 use crate::MuscleBasis;
-use crate::expression_sets::{self, NameSet, NameSets};
-use crate::presets::Preset;
+use crate::expressions::NameSets;
+use crate::expressions::presets::Preset;
 use buffer::{Builder, base64, glb};
+use targets::{MorphTargets, morph_targets, target_accessors};
 
 /// Name of the material of the exported face: replace it to texture the face.
 pub const MATERIAL_NAME: &str = "facebem_skin";
@@ -94,7 +96,7 @@ impl Default for GltfParams {
             format: GltfFormat::Binary,
             animation: false,
             seconds_per_keyframe: 1.0,
-            presets: crate::presets::ALL.to_vec(),
+            presets: crate::expressions::presets::ALL.to_vec(),
             names: NameSets::ALL,
             metres_per_unit: 1.0,
             copyright: None,
@@ -185,19 +187,40 @@ pub fn export_gltf_layout(
     params: &GltfParams,
 ) -> Result<Vec<u8>, GltfExportError> {
     check(basis, layout, params)?;
-    let n = basis.neutral.len();
     let scale = params.metres_per_unit;
-    // Per glTF vertex: gather a welded per-vertex field (zero for unused input positions).
-    let gather = |field: &[DVec3], factor: f64| -> Vec<DVec3> {
-        layout
-            .welded
-            .iter()
-            .map(|w| w.map_or(DVec3::ZERO, |w| field[w as usize] * factor))
-            .collect()
-    };
-
     let mut b = Builder::default();
     let neutral_normals = vertex_normals(&basis.neutral, &basis.triangles);
+    let (attributes, indices) = neutral_accessors(&mut b, basis, layout, &neutral_normals, scale)?;
+    let MorphTargets {
+        targets,
+        clip_targets,
+        partial,
+        left_out,
+    } = morph_targets(basis, params)?;
+    let target_json = target_accessors(&mut b, basis, layout, &targets, &neutral_normals, scale)?;
+    let names: Vec<&str> = targets.iter().map(|(n, _)| n.as_str()).collect();
+    let extras = mesh_extras(&names, left_out, partial, layout);
+    let mut root = root_json(asset_json(params), attributes, indices, extras);
+    // glTF requires at least one target when `targets` is present.
+    if !targets.is_empty() {
+        root["meshes"][0]["primitives"][0]["targets"] = Value::Array(target_json);
+        root["meshes"][0]["weights"] = json!(vec![0.0; targets.len()]);
+    }
+    if params.animation && !clip_targets.is_empty() {
+        root["animations"] = animations(&mut b, params, &clip_targets, targets.len());
+    }
+    Ok(finish(b, root, params.format))
+}
+
+/// Writes the neutral face's accessors (positions, normals, texture coordinates, indices);
+/// returns the primitive's `attributes` and its indices accessor.
+fn neutral_accessors(
+    b: &mut Builder,
+    basis: &MuscleBasis,
+    layout: &ExportLayout,
+    neutral_normals: &[DVec3],
+    scale: f64,
+) -> Result<(Value, usize), GltfExportError> {
     let positions: Vec<DVec3> = layout
         .welded
         .iter()
@@ -218,92 +241,19 @@ pub fn export_gltf_layout(
         attributes["TEXCOORD_0"] = json!(b.vec2_accessor(uvs));
     }
     let indices = b.indices_accessor(&layout.triangles);
+    Ok((attributes, indices))
+}
 
-    // Morph targets: (name, welded position deltas at weight 1).
-    let field_of = |sliders: &[f64]| -> Vec<DVec3> {
-        let mut delta = vec![DVec3::ZERO; n];
-        for (field, &s) in basis.displacements.iter().zip(sliders) {
-            if s != 0.0 {
-                for (d, f) in delta.iter_mut().zip(field) {
-                    *d += s * *f;
-                }
-            }
-        }
-        delta
-    };
-    let mut targets: Vec<(String, Vec<DVec3>)> = Vec::new();
-    // Animation clips: (clip name, target index).
-    let mut clip_targets: Vec<(String, usize)> = Vec::new();
-    let (named, left_out) = expression_sets::for_rig(params.names, &basis.muscle_ids);
-    let mut partial = Map::new();
-    for r in &named {
-        let e = r.expression;
-        if !r.resolved.missing.is_empty() {
-            partial.insert(e.name.into(), json!(r.resolved.missing));
-        }
-        if e.set == NameSet::Vrm && !params.names.facebem && e.name != "neutral" {
-            clip_targets.push((e.name.to_string(), targets.len()));
-        }
-        targets.push((e.name.to_string(), field_of(&r.resolved.sliders)));
-    }
-    let mut left_out_json = Map::new();
-    for (e, controls) in &left_out {
-        left_out_json.insert(
-            e.name.into(),
-            json!(format!("controls not in this rig: {}", controls.join(", "))),
-        );
-    }
-    for (name, why) in expression_sets::NOT_MODELLED {
-        let set = if expression_sets::arkit::NAMES.contains(&name) {
-            NameSet::Arkit
-        } else {
-            NameSet::Vrm
-        };
-        if params.names.contains(set) {
-            left_out_json.insert(name.into(), json!(format!("not modelled: {why}")));
-        }
-    }
-    if params.names.facebem {
-        for (id, field) in basis.muscle_ids.iter().zip(&basis.displacements) {
-            targets.push((
-                format!("{id}_contract"),
-                field.iter().map(|d| -*d).collect(),
-            ));
-            targets.push((format!("{id}_relax"), field.clone()));
-        }
-        for preset in params.presets.iter().filter(|p| p.name != "neutral") {
-            let sliders = preset.sliders_for(&basis.muscle_ids);
-            clip_targets.push((preset.name.to_string(), targets.len()));
-            targets.push((format!("preset_{}", preset.name), field_of(&sliders)));
-        }
-    }
-    let mut seen = std::collections::HashSet::new();
-    if let Some((name, _)) = targets.iter().find(|(name, _)| !seen.insert(name.as_str())) {
-        return Err(GltfExportError::DuplicateTarget(name.clone()));
-    }
-
-    let mut target_json = Vec::with_capacity(targets.len());
-    for (name, delta) in &targets {
-        let posed: Vec<DVec3> = basis
-            .neutral
-            .iter()
-            .zip(delta)
-            .map(|(p, d)| *p + *d)
-            .collect();
-        let normal_delta: Vec<DVec3> = vertex_normals(&posed, &basis.triangles)
-            .iter()
-            .zip(&neutral_normals)
-            .map(|(a, b)| *a - *b)
-            .collect();
-        let p = b.vec3_accessor(name, &gather(delta, scale), true)?;
-        let nd = b.vec3_accessor(name, &gather(&normal_delta, 1.0), false)?;
-        target_json.push(json!({ "POSITION": p, "NORMAL": nd }));
-    }
-    let names: Vec<&str> = targets.iter().map(|(n, _)| n.as_str()).collect();
-
+/// `mesh.extras`: the target names, the left-out and partial targets, the seam copies.
+fn mesh_extras(
+    names: &[&str],
+    left_out: Map<String, Value>,
+    partial: Map<String, Value>,
+    layout: &ExportLayout,
+) -> Value {
     let mut extras = json!({ "targetNames": names });
-    if !left_out_json.is_empty() {
-        extras["leftOutTargets"] = Value::Object(left_out_json);
+    if !left_out.is_empty() {
+        extras["leftOutTargets"] = Value::Object(left_out);
     }
     if !partial.is_empty() {
         extras["partialTargets"] = Value::Object(partial);
@@ -311,6 +261,11 @@ pub fn export_gltf_layout(
     if layout.len() > layout.input_count {
         extras["seamCopyOf"] = json!(&layout.input_index[layout.input_count..]);
     }
+    extras
+}
+
+/// The `asset` object: version, generator, extras (with the unit conversion), copyright.
+fn asset_json(params: &GltfParams) -> Value {
     let mut asset_extras = params.asset_extras.clone();
     asset_extras.insert("metresPerInputUnit".into(), json!(params.metres_per_unit));
     let mut asset = json!({
@@ -321,7 +276,12 @@ pub fn export_gltf_layout(
     if let Some(c) = &params.copyright {
         asset["copyright"] = json!(c);
     }
-    let mut root = json!({
+    asset
+}
+
+/// The document's root: one scene, node, material and mesh with one primitive.
+fn root_json(asset: Value, attributes: Value, indices: usize, extras: Value) -> Value {
+    json!({
         "asset": asset,
         "scene": 0,
         "scenes": [{ "name": "face", "nodes": [0] }],
@@ -345,32 +305,37 @@ pub fn export_gltf_layout(
             }],
             "extras": extras,
         }],
-    });
-    // glTF requires at least one target when `targets` is present.
-    if !targets.is_empty() {
-        root["meshes"][0]["primitives"][0]["targets"] = Value::Array(target_json);
-        root["meshes"][0]["weights"] = json!(vec![0.0; targets.len()]);
-    }
+    })
+}
 
-    if params.animation && !clip_targets.is_empty() {
-        // One clip per preset: neutral, the preset at full weight, neutral.
-        let s = params.seconds_per_keyframe;
-        let input = b.scalar_accessor(&[0.0, s, 2.0 * s], true);
-        let mut clips = Vec::new();
-        for (name, t) in &clip_targets {
-            let t = *t;
-            let mut weights = vec![0.0f32; 3 * targets.len()];
-            weights[targets.len() + t] = 1.0;
-            let output = b.scalar_accessor(&weights, false);
-            clips.push(json!({
-                "name": name,
-                "samplers": [{ "input": input, "output": output, "interpolation": "LINEAR" }],
-                "channels": [{ "sampler": 0, "target": { "node": 0, "path": "weights" } }],
-            }));
-        }
-        root["animations"] = Value::Array(clips);
+/// One clip per preset (`clip_targets`: clip name, target index among `target_count`):
+/// neutral, the preset at full weight, neutral. Writes their accessors.
+fn animations(
+    b: &mut Builder,
+    params: &GltfParams,
+    clip_targets: &[(String, usize)],
+    target_count: usize,
+) -> Value {
+    let s = params.seconds_per_keyframe;
+    let input = b.scalar_accessor(&[0.0, s, 2.0 * s], true);
+    let mut clips = Vec::new();
+    for (name, t) in clip_targets {
+        let t = *t;
+        let mut weights = vec![0.0f32; 3 * target_count];
+        weights[target_count + t] = 1.0;
+        let output = b.scalar_accessor(&weights, false);
+        clips.push(json!({
+            "name": name,
+            "samplers": [{ "input": input, "output": output, "interpolation": "LINEAR" }],
+            "channels": [{ "sampler": 0, "target": { "node": 0, "path": "weights" } }],
+        }));
     }
+    Value::Array(clips)
+}
 
+/// Pads the buffer, adds the buffer views, accessors and buffer to `root` and writes the file
+/// in `format`.
+fn finish(b: Builder, mut root: Value, format: GltfFormat) -> Vec<u8> {
     let Builder {
         mut bin,
         views,
@@ -381,17 +346,17 @@ pub fn export_gltf_layout(
     }
     root["bufferViews"] = Value::Array(views);
     root["accessors"] = Value::Array(accessors);
-    match params.format {
+    match format {
         GltfFormat::Binary => {
             root["buffers"] = json!([{ "byteLength": bin.len() }]);
-            Ok(glb(&root, &bin))
+            glb(&root, &bin)
         }
         GltfFormat::Embedded => {
             root["buffers"] = json!([{
                 "byteLength": bin.len(),
                 "uri": format!("data:application/octet-stream;base64,{}", base64(&bin)),
             }]);
-            Ok(serde_json::to_vec_pretty(&root).unwrap_or_default())
+            serde_json::to_vec_pretty(&root).unwrap_or_default()
         }
     }
 }

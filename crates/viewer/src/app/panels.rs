@@ -85,7 +85,10 @@ impl ViewerApp {
                 self.sliders.iter_mut().for_each(|s| *s = 0.0);
                 changed = true;
             }
-            for preset in facebem::presets::ALL.iter().filter(|p| p.name != "neutral") {
+            for preset in facebem::expressions::presets::ALL
+                .iter()
+                .filter(|p| p.name != "neutral")
+            {
                 let active = self.active_preset == Some(preset.name);
                 let button = egui::Button::new(preset_label(preset.name)).selected(active);
                 let r = ui

@@ -18,7 +18,7 @@ impl ViewerApp {
         self.options
             .cache_dir
             .clone()
-            .unwrap_or_else(facebem::open::default_cache_dir)
+            .unwrap_or_else(facebem::input::default_cache_dir)
     }
 
     /// Computes (or loads from the cache) the rig of the displayed face with the current
@@ -66,7 +66,7 @@ impl ViewerApp {
             }
             let (mesh, obj) = &*source;
             let cache_path = source::cache_file_for(&dir, mesh, &params);
-            facebem::open::load_or_build(mesh, obj.clone(), &params, &cache_path, &control)
+            facebem::input::load_or_build(mesh, obj.clone(), &params, &cache_path, &control)
                 .map_err(|e| e.to_string())
         });
         self.rigging = Some(RigJob {

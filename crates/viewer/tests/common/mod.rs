@@ -4,6 +4,7 @@
 use std::time::{Duration, Instant};
 
 use egui_kittest::Harness;
+use egui_kittest::kittest::Queryable;
 use facebem::MuscleBasis;
 use glam::DVec3;
 use viewer::{ViewerApp, ViewerOptions};
@@ -81,4 +82,17 @@ pub fn wait_idle(harness: &mut Harness<'_, ViewerApp>) {
         harness.step();
     }
     harness.run();
+}
+
+/// Types `path` into the Path field and clicks Open (one frame; the opening runs in the
+/// background).
+pub fn open_via_path_field(harness: &mut Harness<'_, ViewerApp>, path: &std::path::Path) {
+    harness.get_by_label("Path").focus();
+    harness.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::A);
+    harness
+        .get_by_label("Path")
+        .type_text(&path.display().to_string());
+    harness.run();
+    harness.get_by_label("Open").click();
+    harness.step();
 }

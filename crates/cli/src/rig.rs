@@ -1,0 +1,153 @@
+//! `rig`, `info` and `muscles`, and computing a model from a face mesh with a progress bar.
+
+use std::path::Path;
+use std::time::Duration;
+
+use anyhow::{Context, Result, bail};
+use face_prep::RigParams;
+use facebem::copy::LargeFaceParams;
+use facebem::input::Opened;
+use facebem::{Control, FaceModel, PipelineParams, build_face_model, cache};
+use indicatif::{ProgressBar, ProgressStyle};
+
+use crate::args::SolverArgs;
+use crate::{LIMITS, open};
+
+fn progress_control() -> (Control, ProgressBar) {
+    let bar = ProgressBar::new(1);
+    bar.set_style(
+        ProgressStyle::with_template("{spinner} {elapsed:>4} {msg:>13} [{bar:30}] {pos}/{len}")
+            .unwrap_or_else(|_| ProgressStyle::default_bar())
+            .progress_chars("=> "),
+    );
+    bar.enable_steady_tick(Duration::from_millis(200));
+    let b = bar.clone();
+    let control = Control::new().with_progress(move |p| {
+        b.set_message(p.stage.label());
+        b.set_length(p.total);
+        b.set_position(p.done);
+    });
+    (control, bar)
+}
+
+fn compute(
+    mesh: &face_prep::FaceMesh,
+    obj_source: Option<String>,
+    params: &PipelineParams,
+) -> Result<FaceModel> {
+    let (control, bar) = progress_control();
+    let result = build_face_model(mesh, params, &control);
+    bar.finish_and_clear();
+    let mut model = result?;
+    model.obj_source = obj_source;
+    Ok(model)
+}
+
+/// A posable model from a rig file, or from a face mesh computed with default parameters.
+pub(crate) fn model_from(path: &Path) -> Result<FaceModel> {
+    model_from_opened(path, open(path)?)
+}
+
+/// Like [`model_from`], for a file already opened.
+pub(crate) fn model_from_opened(path: &Path, opened: Opened) -> Result<FaceModel> {
+    match opened {
+        Opened::Model(model) => Ok(*model),
+        Opened::Face { mesh, obj_source } => {
+            eprintln!("{} is a face mesh: computing its rig first", path.display());
+            compute(&mesh, obj_source, &PipelineParams::default())
+        }
+    }
+}
+
+pub(crate) fn rig(
+    face: &Path,
+    output: &Path,
+    muscles: Option<&Path>,
+    solver: &SolverArgs,
+) -> Result<()> {
+    let inputs: Vec<&Path> = std::iter::once(face).chain(muscles).collect();
+    facebem::check_output(output, &inputs, &["rig"], "a rig file")?;
+    let (mesh, obj_source) = match open(face)? {
+        Opened::Face { mesh, obj_source } => (mesh, obj_source),
+        Opened::Model(_) => bail!("{} is already a rig file; give a face mesh", face.display()),
+    };
+    let mut params = PipelineParams {
+        rig: RigParams {
+            offset: solver.offset,
+            thickness: solver.thickness,
+            units: solver.units,
+            muscle_model: solver.muscle_model,
+            ..RigParams::default()
+        },
+        poisson: solver.poisson,
+        peel_rolled_in: !solver.keep_rolled_in,
+        large_face: LargeFaceParams {
+            max_triangles: solver.max_triangles,
+            target_triangles: solver.target_triangles,
+            method: solver.copy,
+            ..LargeFaceParams::default()
+        },
+        ..PipelineParams::default()
+    };
+    if let Some(file) = muscles {
+        let rig = facebem::prep_rig(&mesh, &params)?;
+        let limits = LIMITS.get().copied().unwrap_or_default();
+        let list =
+            face_prep::muscle_file::load_with_limits(file, rig.shell.element_count(), &limits)
+                .with_context(|| format!("muscle file {}", file.display()))?;
+        params.muscles = Some(list);
+    }
+    let model = compute(&mesh, obj_source, &params)?;
+    cache::save(output, &model)?;
+    let r = &model.report;
+    for w in r.warnings() {
+        eprintln!("warning: {w}");
+    }
+    let simplified = r
+        .simplify_path
+        .map(|p| format!(", simplified {}", p.describe()))
+        .unwrap_or_default();
+    println!(
+        "{}: {} front triangles ({} simulated{simplified}), {} shell elements, {} muscles; prep {:.2} s, solve {:.2} s",
+        output.display(),
+        r.input_triangles,
+        r.simulated_triangles,
+        r.shell_elements,
+        model.basis.muscle_count(),
+        r.prep_seconds,
+        r.solve_seconds
+    );
+    Ok(())
+}
+
+pub(crate) fn info(file: &Path) -> Result<()> {
+    let opened = open(file)?;
+    let (rig, mesh, model) = match &opened {
+        Opened::Model(model) => (model.rig.clone(), &model.mesh, Some(model.as_ref())),
+        Opened::Face { mesh, .. } => match facebem::prep_rig(mesh, &PipelineParams::default()) {
+            Ok(rig) => (rig, mesh, None),
+            Err(e) => {
+                // Still describe what was found, then the error.
+                print!("{}", facebem::report::describe::describe_loops(file, mesh));
+                return Err(e.into());
+            }
+        },
+    };
+    print!(
+        "{}",
+        facebem::report::describe::describe(file, mesh, &rig, model)
+    );
+    Ok(())
+}
+
+pub(crate) fn muscles(face: &Path, output: &Path) -> Result<()> {
+    facebem::check_output(output, &[face], &["muscles"], "a muscle file")?;
+    let rig = match open(face)? {
+        Opened::Model(model) => model.rig,
+        Opened::Face { mesh, .. } => facebem::prep_rig(&mesh, &PipelineParams::default())?,
+    };
+    face_prep::muscle_file::save(output, &rig.muscles)
+        .with_context(|| format!("cannot write {}", output.display()))?;
+    println!("{}: {} muscles", output.display(), rig.muscles.len());
+    Ok(())
+}

@@ -1,0 +1,24 @@
+//! The controls stage: what each control of the rig is and how it is placed on the shell.
+//!
+//! - [`ids`]: the shared vocabulary (sides, jaw modes, lid actions); imports nothing.
+//! - [`muscle_kind`]: the table of controls, one row each (id, name, side, twin, generator).
+//! - one generator per kind: muscle bands from [`anatomy`] attachments ([`muscle_model`]),
+//!   force-driven bands and the sphincter ([`force_controls`]), the modiolus pins
+//!   ([`modiolus`]), the jaw's rigid modes ([`jaw`]), the lids ([`eyelid`]), the teeth the deep
+//!   layer slides on ([`teeth`]); the thesis's ten muscles ([`muscles`]) and its muscle file
+//!   format ([`muscle_file`]).
+//! - `dispatch`: the two places a control's generator is dispatched on (its elements, its
+//!   pattern).
+
+pub mod anatomy;
+mod dispatch;
+pub mod eyelid;
+pub mod force_controls;
+pub mod ids;
+pub mod jaw;
+pub mod modiolus;
+pub mod muscle_file;
+pub mod muscle_kind;
+pub mod muscle_model;
+pub mod muscles;
+pub mod teeth;

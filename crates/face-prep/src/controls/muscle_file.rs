@@ -1,0 +1,361 @@
+//! Muscle files in the thesis format (§7.6): blocks of `[Name]`, `[Size]`, `[Data]` with one
+//! polygon (shell element) index per line.
+//!
+//! Each muscle is written as
+//!
+//! ```text
+//! [Name]
+//! Zygomaticus major L
+//! [Size]
+//! 3
+//! [Data]
+//! 120
+//! 121
+//! 133
+//! [BackSize]
+//! 2
+//! [BackData]
+//! 2950
+//! 2951
+//! ```
+//!
+//! `[Data]` is the front chain in order from start to end. The `[BackSize]`/`[BackData]` pair is
+//! this project's extension for the back chain; it is optional when reading, so thesis files
+//! (front chain only) load unchanged. Blank lines between blocks are ignored. The name of a
+//! standard muscle (display name such as "Frontalis L", or id such as `frontalis_l`) sets
+//! [`Muscle::kind`]; any other name gives a custom muscle.
+//!
+//! ```
+//! use face_prep::{Muscle, muscle_file};
+//! let m = vec![Muscle { name: "Frontalis L".into(), kind: None, front_chain: vec![4, 2], back_chain: vec![] }];
+//! let text = muscle_file::to_string(&m).unwrap();
+//! let back = muscle_file::read_str(&text, 10).unwrap();
+//! assert_eq!(back[0].front_chain, vec![4, 2]);
+//! assert_eq!(back[0].kind, Some(face_prep::MuscleKind::FrontalisL));
+//! ```
+
+use crate::controls::muscle_kind::MuscleKind;
+use crate::controls::muscles::Muscle;
+use crate::error::MuscleFileError;
+use std::collections::HashSet;
+use std::io::{Read, Write};
+use std::path::Path;
+
+/// The standard muscle a name denotes (display name or id, case-insensitive).
+pub fn kind_from_name(name: &str) -> Option<MuscleKind> {
+    let n = name.trim();
+    MuscleKind::ALL
+        .into_iter()
+        .find(|k| k.display_name().eq_ignore_ascii_case(n))
+        .or_else(|| MuscleKind::from_id(n))
+}
+
+struct Lines<'a> {
+    lines: Vec<(usize, &'a str)>,
+    pos: usize,
+}
+
+impl<'a> Lines<'a> {
+    fn new(text: &'a str) -> Lines<'a> {
+        Lines {
+            lines: text
+                .lines()
+                .enumerate()
+                .map(|(i, l)| (i + 1, l.trim()))
+                .collect(),
+            pos: 0,
+        }
+    }
+    /// Next line, skipping blank ones between blocks.
+    fn next_nonblank(&mut self) -> Option<(usize, &'a str)> {
+        while let Some(&(n, l)) = self.lines.get(self.pos) {
+            self.pos += 1;
+            if !l.is_empty() {
+                return Some((n, l));
+            }
+        }
+        None
+    }
+    fn peek_nonblank(&self) -> Option<(usize, &'a str)> {
+        self.lines[self.pos.min(self.lines.len())..]
+            .iter()
+            .find(|(_, l)| !l.is_empty())
+            .copied()
+    }
+    fn last_line(&self) -> usize {
+        self.lines.last().map(|l| l.0).unwrap_or(0)
+    }
+}
+
+fn expect_header(
+    lines: &mut Lines,
+    header: &'static str,
+    muscle: &str,
+    missing: &'static str,
+) -> Result<(), MuscleFileError> {
+    match lines.next_nonblank() {
+        Some((_, l)) if l.eq_ignore_ascii_case(header) => Ok(()),
+        Some((line, l)) => Err(MuscleFileError::Unexpected {
+            line,
+            text: l.to_owned(),
+            expected: missing,
+        }),
+        None => Err(MuscleFileError::Truncated {
+            line: lines.last_line(),
+            muscle: muscle.to_owned(),
+            missing,
+        }),
+    }
+}
+
+fn number(line: usize, text: &str) -> Result<u32, MuscleFileError> {
+    text.parse::<u32>().map_err(|_| MuscleFileError::BadNumber {
+        line,
+        text: text.to_owned(),
+    })
+}
+
+/// Reads a chain: `[<size_header>] n [<data_header>] n indices`.
+fn read_chain(
+    lines: &mut Lines,
+    muscle: &str,
+    data_header: &'static str,
+    element_count: usize,
+) -> Result<Vec<u32>, MuscleFileError> {
+    let declared = match lines.next_nonblank() {
+        Some((line, l)) => number(line, l)? as usize,
+        None => {
+            return Err(MuscleFileError::Truncated {
+                line: lines.last_line(),
+                muscle: muscle.to_owned(),
+                missing: "the size value",
+            });
+        }
+    };
+    expect_header(lines, data_header, muscle, data_header)?;
+    // No capacity from the declared size: a file may declare 4294967295 and list nothing.
+    let mut chain = Vec::new();
+    let mut seen = HashSet::new();
+    loop {
+        match lines.peek_nonblank() {
+            Some((line, l)) if !l.starts_with('[') => {
+                lines.next_nonblank();
+                let index = number(line, l)?;
+                if chain.len() >= declared {
+                    // Count the surplus for the message.
+                    let mut found = chain.len() + 1;
+                    while let Some((_, l)) = lines.peek_nonblank() {
+                        if l.starts_with('[') {
+                            break;
+                        }
+                        lines.next_nonblank();
+                        found += 1;
+                    }
+                    return Err(MuscleFileError::SizeMismatch {
+                        line,
+                        muscle: muscle.to_owned(),
+                        declared,
+                        found,
+                    });
+                }
+                if index as usize >= element_count {
+                    return Err(MuscleFileError::IndexOutOfRange {
+                        line,
+                        muscle: muscle.to_owned(),
+                        index,
+                        element_count,
+                    });
+                }
+                if !seen.insert(index) {
+                    return Err(MuscleFileError::DuplicateElement {
+                        line,
+                        muscle: muscle.to_owned(),
+                        index,
+                    });
+                }
+                chain.push(index);
+            }
+            other => {
+                if chain.len() != declared {
+                    return Err(MuscleFileError::SizeMismatch {
+                        line: other.map(|o| o.0).unwrap_or_else(|| lines.last_line()),
+                        muscle: muscle.to_owned(),
+                        declared,
+                        found: chain.len(),
+                    });
+                }
+                return Ok(chain);
+            }
+        }
+    }
+}
+
+/// Parses a muscle file; every index must be below `element_count` (the shell's element count).
+/// At most [`crate::InputLimits::max_muscles`] muscles of the default limits; see
+/// [`read_str_with_limits`].
+pub fn read_str(text: &str, element_count: usize) -> Result<Vec<Muscle>, MuscleFileError> {
+    read_str_with_limits(text, element_count, &crate::InputLimits::default())
+}
+
+/// Like [`read_str`], with explicit limits (`limits.max_muscles` muscles at most; the chains
+/// are bounded by `element_count`, since an element may appear once per chain).
+///
+/// ```
+/// use face_prep::{InputLimits, muscle_file};
+/// let text = "[Name]\nA\n[Size]\n1\n[Data]\n0\n[Name]\nB\n[Size]\n1\n[Data]\n1\n";
+/// let one = InputLimits { max_muscles: 1, ..InputLimits::default() };
+/// let err = muscle_file::read_str_with_limits(text, 2, &one).unwrap_err();
+/// assert!(err.to_string().contains("more than 1 muscles"), "{err}");
+/// assert_eq!(muscle_file::read_str(text, 2).unwrap().len(), 2);
+/// ```
+pub fn read_str_with_limits(
+    text: &str,
+    element_count: usize,
+    limits: &crate::InputLimits,
+) -> Result<Vec<Muscle>, MuscleFileError> {
+    let mut lines = Lines::new(text);
+    let mut muscles = Vec::new();
+    let max_muscles = limits.max_muscles;
+    while let Some((line, l)) = lines.next_nonblank() {
+        if muscles.len() >= max_muscles {
+            return Err(MuscleFileError::TooManyMuscles {
+                line,
+                limit: max_muscles,
+            });
+        }
+        if !l.eq_ignore_ascii_case("[Name]") {
+            return Err(MuscleFileError::Unexpected {
+                line,
+                text: l.to_owned(),
+                expected: "[Name]",
+            });
+        }
+        let name = match lines.next_nonblank() {
+            Some((line, n)) if n.starts_with('[') => {
+                return Err(MuscleFileError::Unexpected {
+                    line,
+                    text: n.to_owned(),
+                    expected: "a muscle name",
+                });
+            }
+            Some((_, n)) => n.to_owned(),
+            None => {
+                return Err(MuscleFileError::Truncated {
+                    line: lines.last_line(),
+                    muscle: String::new(),
+                    missing: "the name",
+                });
+            }
+        };
+        expect_header(&mut lines, "[Size]", &name, "[Size]")?;
+        let front_chain = read_chain(&mut lines, &name, "[Data]", element_count)?;
+        let back_chain = match lines.peek_nonblank() {
+            Some((_, l)) if l.eq_ignore_ascii_case("[BackSize]") => {
+                lines.next_nonblank();
+                read_chain(&mut lines, &name, "[BackData]", element_count)?
+            }
+            _ => Vec::new(),
+        };
+        muscles.push(Muscle {
+            kind: kind_from_name(&name),
+            name,
+            front_chain,
+            back_chain,
+        });
+    }
+    Ok(muscles)
+}
+
+/// Like [`read_str`], from a reader (at most [`crate::InputLimits::max_file_bytes`] bytes).
+pub fn read(reader: impl Read, element_count: usize) -> Result<Vec<Muscle>, MuscleFileError> {
+    read_with_limits(reader, element_count, &crate::InputLimits::default())
+}
+
+/// Like [`read`], with explicit limits (file bytes and muscle count).
+pub fn read_with_limits(
+    reader: impl Read,
+    element_count: usize,
+    limits: &crate::InputLimits,
+) -> Result<Vec<Muscle>, MuscleFileError> {
+    let limit = limits.max_file_bytes;
+    let mut text = String::new();
+    reader
+        .take(limit.saturating_add(1))
+        .read_to_string(&mut text)?;
+    if text.len() as u64 > limit {
+        return Err(MuscleFileError::Io(std::io::Error::other(format!(
+            "muscle file larger than the input limit of {limit} bytes"
+        ))));
+    }
+    read_str_with_limits(&text, element_count, limits)
+}
+
+/// Formats muscles in the file format (back chain blocks only for muscles that have one).
+pub fn to_string(muscles: &[Muscle]) -> Result<String, MuscleFileError> {
+    use std::fmt::Write as _;
+    let mut s = String::new();
+    for m in muscles {
+        let name = m.name.trim();
+        if name.is_empty() || name.starts_with('[') || name.contains(['\n', '\r']) || name != m.name
+        {
+            return Err(MuscleFileError::BadName(m.name.clone()));
+        }
+        let _ = writeln!(s, "[Name]\n{name}\n[Size]\n{}\n[Data]", m.front_chain.len());
+        for e in &m.front_chain {
+            let _ = writeln!(s, "{e}");
+        }
+        if !m.back_chain.is_empty() {
+            let _ = writeln!(s, "[BackSize]\n{}\n[BackData]", m.back_chain.len());
+            for e in &m.back_chain {
+                let _ = writeln!(s, "{e}");
+            }
+        }
+    }
+    Ok(s)
+}
+
+/// Writes muscles to a writer.
+pub fn write(mut writer: impl Write, muscles: &[Muscle]) -> Result<(), MuscleFileError> {
+    writer.write_all(to_string(muscles)?.as_bytes())?;
+    Ok(())
+}
+
+/// Writes a muscle file atomically ([`crate::atomic_write::write_atomic`]: temporary file in
+/// the same folder, then rename; the existing file's mode is kept; a symlink or device at
+/// `path` is refused).
+pub fn save(path: &Path, muscles: &[Muscle]) -> Result<(), MuscleFileError> {
+    let text = to_string(muscles)?;
+    crate::atomic_write::write_atomic(path, text.as_bytes())
+        .map_err(|e| MuscleFileError::Io(std::io::Error::other(e.to_string())))
+}
+
+/// Reads a muscle file from disk (a regular file only: a FIFO or device is refused unopened),
+/// under the default limits; see [`load_with_limits`].
+pub fn load(path: &Path, element_count: usize) -> Result<Vec<Muscle>, MuscleFileError> {
+    load_with_limits(path, element_count, &crate::InputLimits::default())
+}
+
+/// Like [`load`], with explicit limits (file bytes, checked from the file's size before
+/// reading, and muscle count).
+pub fn load_with_limits(
+    path: &Path,
+    element_count: usize,
+    limits: &crate::InputLimits,
+) -> Result<Vec<Muscle>, MuscleFileError> {
+    let meta = std::fs::metadata(path)?;
+    if !meta.is_file() {
+        return Err(MuscleFileError::Io(std::io::Error::other(format!(
+            "{} is not a regular file",
+            path.display()
+        ))));
+    }
+    if meta.len() > limits.max_file_bytes {
+        return Err(MuscleFileError::Io(std::io::Error::other(format!(
+            "{} is {} bytes, above the input limit of {} bytes",
+            path.display(),
+            meta.len(),
+            limits.max_file_bytes
+        ))));
+    }
+    read_with_limits(std::fs::File::open(path)?, element_count, limits)
+}

@@ -1,0 +1,479 @@
+//! The validated, welded input face mesh and its loaders (OBJ through tobj, glTF/GLB through gltf).
+
+use crate::error::PrepError;
+use crate::frame::topology;
+use crate::input::gltf_read::{self, Document};
+use crate::input::limits::{InputLimits, MAX_COORDINATE, read_input_file};
+use glam::{DMat4, DVec3};
+use serde::{Deserialize, Serialize};
+use std::collections::HashMap;
+use std::io::BufRead;
+use std::path::Path;
+
+/// One front-face triangle mesh in the user's INPUT frame: welded (coincident positions merged),
+/// triangulated, unused vertices dropped, and validated (one connected, edge-manifold,
+/// consistently wound surface with exactly four boundary loops).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct FaceMesh {
+    /// Welded vertex positions, input frame, in order of first appearance in the input.
+    pub vertices: Vec<DVec3>,
+    /// Triangles indexing [`FaceMesh::vertices`], counter-clockwise seen from the front.
+    pub triangles: Vec<[u32; 3]>,
+    /// For every input position (OBJ `v` line order, or glTF POSITION accessor order concatenated
+    /// over the mesh's primitives) the welded vertex it became, or `None` if no face used it.
+    /// Exports use this to write poses in the user's own vertex order.
+    pub input_to_vertex: Vec<Option<u32>>,
+}
+
+/// A position must be finite and within [`MAX_COORDINATE`] of the origin.
+fn check_coordinates(input_index: usize, p: DVec3) -> Result<(), PrepError> {
+    if !p.is_finite() {
+        return Err(PrepError::NonFiniteVertex {
+            input_index,
+            position: p.to_array(),
+        });
+    }
+    if p.abs().max_element() > MAX_COORDINATE {
+        return Err(PrepError::CoordinateTooLarge {
+            input_index,
+            position: p.to_array(),
+        });
+    }
+    Ok(())
+}
+
+/// Bit pattern of a position, with −0.0 folded onto +0.0, for exact welding.
+fn weld_key(p: DVec3) -> [u64; 3] {
+    p.to_array()
+        .map(|c| if c == 0.0 { 0u64 } else { c.to_bits() })
+}
+
+struct Welded {
+    vertices: Vec<DVec3>,
+    triangles: Vec<[u32; 3]>,
+    by_key: HashMap<[u64; 3], u32>,
+}
+
+/// Merges bit-identical positions among those used by `triangles` and drops unused ones.
+fn weld(positions: &[DVec3], triangles: &[[u32; 3]]) -> Result<Welded, PrepError> {
+    let mut used = vec![false; positions.len()];
+    for (t, tri) in triangles.iter().enumerate() {
+        for &i in tri {
+            match used.get_mut(i as usize) {
+                Some(u) => *u = true,
+                None => {
+                    return Err(PrepError::IndexOutOfRange {
+                        triangle: t,
+                        index: i,
+                        vertex_count: positions.len(),
+                    });
+                }
+            }
+        }
+    }
+    let mut by_key = HashMap::new();
+    let mut vertices = Vec::new();
+    let mut remap = vec![u32::MAX; positions.len()];
+    for (i, &p) in positions.iter().enumerate() {
+        if !used[i] {
+            continue;
+        }
+        check_coordinates(i, p)?;
+        let id = *by_key.entry(weld_key(p)).or_insert_with(|| {
+            vertices.push(p);
+            (vertices.len() - 1) as u32
+        });
+        remap[i] = id;
+    }
+    let triangles = triangles
+        .iter()
+        .map(|t| t.map(|i| remap[i as usize]))
+        .collect();
+    Ok(Welded {
+        vertices,
+        triangles,
+        by_key,
+    })
+}
+
+impl FaceMesh {
+    /// Builds a face mesh from raw positions and triangles (indices into `positions`), welding
+    /// coincident positions, dropping unused ones and validating the result.
+    ///
+    /// ```
+    /// use face_prep::{FaceMesh, PrepError};
+    /// use glam::DVec3;
+    /// // A single triangle has one boundary loop, not four.
+    /// let err = FaceMesh::from_triangles(&[DVec3::ZERO, DVec3::X, DVec3::Y], &[[0, 1, 2]]);
+    /// assert!(matches!(err, Err(PrepError::WrongLoopCount { count: 1, .. })));
+    /// ```
+    pub fn from_triangles(
+        positions: &[DVec3],
+        triangles: &[[u32; 3]],
+    ) -> Result<FaceMesh, PrepError> {
+        let limits = InputLimits::default();
+        limits.check_count("positions", positions.len() as u64, limits.max_positions)?;
+        limits.check_count("triangles", triangles.len() as u64, limits.max_triangles)?;
+        let w = weld(positions, triangles)?;
+        let input_to_vertex = positions
+            .iter()
+            .map(|&p| w.by_key.get(&weld_key(p)).copied())
+            .collect();
+        FaceMesh::validated(w.vertices, w.triangles, input_to_vertex)
+    }
+
+    fn validated(
+        vertices: Vec<DVec3>,
+        triangles: Vec<[u32; 3]>,
+        input_to_vertex: Vec<Option<u32>>,
+    ) -> Result<FaceMesh, PrepError> {
+        let loops = topology::validate(&vertices, &triangles)?;
+        topology::check_four_loops(&vertices, &loops)?;
+        Ok(FaceMesh {
+            vertices,
+            triangles,
+            input_to_vertex,
+        })
+    }
+
+    /// Parses OBJ text (tobj, multi-index mode so seams are not split, n-gons fan-triangulated),
+    /// welds, validates.
+    ///
+    /// ```
+    /// let obj = std::fs::read_to_string(concat!(
+    ///     env!("CARGO_MANIFEST_DIR"),
+    ///     "/../../assets/mediapipe_canonical_4loop.obj"
+    /// ))
+    /// .unwrap();
+    /// let face = face_prep::FaceMesh::from_obj_str(&obj).unwrap();
+    /// assert_eq!((face.vertices.len(), face.triangles.len()), (468, 852));
+    /// ```
+    pub fn from_obj_str(text: &str) -> Result<FaceMesh, PrepError> {
+        FaceMesh::from_obj_reader(&mut text.as_bytes())
+    }
+
+    /// Like [`FaceMesh::from_obj_str`], from a buffered reader (at most
+    /// [`InputLimits::max_file_bytes`] bytes are read).
+    pub fn from_obj_reader(reader: &mut impl BufRead) -> Result<FaceMesh, PrepError> {
+        use std::io::Read;
+        let limits = InputLimits::default();
+        let mut bytes = Vec::new();
+        reader
+            .take(limits.max_file_bytes.saturating_add(1))
+            .read_to_end(&mut bytes)
+            .map_err(|e| PrepError::Io {
+                path: "<reader>".into(),
+                source: e,
+            })?;
+        limits.check_file_bytes(bytes.len() as u64)?;
+        FaceMesh::from_obj_bytes(&bytes, &limits)
+    }
+
+    /// Parses OBJ bytes (see [`FaceMesh::from_obj_str`]) with explicit size limits.
+    pub fn from_obj_bytes(bytes: &[u8], limits: &InputLimits) -> Result<FaceMesh, PrepError> {
+        limits.check_file_bytes(bytes.len() as u64)?;
+        let text = String::from_utf8_lossy(bytes);
+        let options = tobj::LoadOptions {
+            single_index: false,
+            triangulate: true,
+            ignore_points: true,
+            ignore_lines: true,
+        };
+        let (models, _materials) =
+            tobj::load_obj_buf(&mut text.as_bytes(), &options, |_| Ok(Default::default()))
+                .map_err(|e| PrepError::Obj {
+                    reason: e.to_string(),
+                })?;
+        let position_count: usize = models.iter().map(|m| m.mesh.positions.len() / 3).sum();
+        let index_count: usize = models.iter().map(|m| m.mesh.indices.len() / 3).sum();
+        limits.check_count("positions", position_count as u64, limits.max_positions)?;
+        limits.check_count("triangles", index_count as u64, limits.max_triangles)?;
+        let mut positions = Vec::new();
+        let mut triangles = Vec::new();
+        for m in &models {
+            let base = (positions.len()) as u32;
+            positions.extend(
+                m.mesh
+                    .positions
+                    .chunks_exact(3)
+                    .map(|c| DVec3::new(c[0], c[1], c[2])),
+            );
+            triangles.extend(
+                m.mesh
+                    .indices
+                    .chunks_exact(3)
+                    .map(|c| [c[0] + base, c[1] + base, c[2] + base]),
+            );
+        }
+        // NaN check in file order so the message names the `v` line's index.
+        let file_positions = scan_obj_positions(&text);
+        for (i, p) in file_positions.iter().enumerate() {
+            check_coordinates(i, *p)?;
+        }
+        let w = weld(&positions, &triangles)?;
+        let input_to_vertex = file_positions
+            .iter()
+            .map(|&p| w.by_key.get(&weld_key(p)).copied())
+            .collect();
+        FaceMesh::validated(w.vertices, w.triangles, input_to_vertex)
+    }
+
+    /// Loads the first mesh of a glTF/GLB document given as bytes (`.glb` or self-contained
+    /// `.gltf` with data URIs), or the mesh named `mesh_name`. The transforms of the first node
+    /// that instantiates the mesh (in scene order) are applied.
+    pub fn from_gltf_slice(bytes: &[u8], mesh_name: Option<&str>) -> Result<FaceMesh, PrepError> {
+        gltf_mesh(bytes, None, mesh_name, &InputLimits::default())
+    }
+
+    /// Like [`FaceMesh::from_gltf_slice`] for a document read from `folder` (relative buffer
+    /// URIs are read from inside that folder only), with explicit size limits.
+    pub fn from_gltf_bytes(
+        bytes: &[u8],
+        folder: Option<&Path>,
+        mesh_name: Option<&str>,
+        limits: &InputLimits,
+    ) -> Result<FaceMesh, PrepError> {
+        gltf_mesh(bytes, folder, mesh_name, limits)
+    }
+}
+
+/// Positions of the `v` lines of an OBJ text in file order, parsed as tobj does (f64, optional
+/// w divides). Lines tobj would reject never reach this function's caller.
+fn scan_obj_positions(text: &str) -> Vec<DVec3> {
+    let mut out = Vec::new();
+    for line in text.lines() {
+        let mut words = line.split_whitespace();
+        if words.next() != Some("v") {
+            continue;
+        }
+        let nums: Vec<f64> = words.map_while(|w| w.parse::<f64>().ok()).collect();
+        if nums.len() < 3 {
+            continue;
+        }
+        let mut p = DVec3::new(nums[0], nums[1], nums[2]);
+        if nums.len() == 4 && nums[3] != 0.0 {
+            p /= nums[3];
+        }
+        out.push(p);
+    }
+    out
+}
+
+/// The vertices of a glTF face mesh as the file has them (before welding): every primitive's
+/// POSITION (world frame: the node transforms applied) concatenated, the triangles indexing
+/// them, and TEXCOORD_0 and NORMAL where the file has them.
+#[derive(Clone, Debug, PartialEq)]
+pub struct GltfFaceData {
+    /// Positions, world frame, primitives concatenated in order.
+    pub positions: Vec<DVec3>,
+    /// Triangles indexing [`GltfFaceData::positions`] (strips and fans expanded; wound
+    /// counter-clockwise in the world frame).
+    pub triangles: Vec<[u32; 3]>,
+    /// TEXCOORD_0 per position (glTF convention), if any primitive has it (zeros elsewhere).
+    pub uvs: Option<Vec<[f32; 2]>>,
+    /// Unit NORMAL per position (world frame), if any primitive has it (`None` elsewhere).
+    pub normals: Option<Vec<Option<DVec3>>>,
+}
+
+/// Reads the first mesh of a glTF/GLB document (or the mesh named `mesh_name`) as the file has
+/// it, within `limits`; [`FaceMesh::from_gltf_bytes`] welds and validates the same data.
+pub fn gltf_face_data(
+    bytes: &[u8],
+    base: Option<&Path>,
+    mesh_name: Option<&str>,
+    limits: &InputLimits,
+) -> Result<GltfFaceData, PrepError> {
+    let mut doc = Document::parse(bytes, base, limits)?;
+    let labels = gltf_read::mesh_labels(&doc.root);
+    let mesh = select_mesh(&doc, &labels, mesh_name)?;
+    let world = doc.mesh_world_transform(mesh)?.unwrap_or(DMat4::IDENTITY);
+    let normal_matrix = glam::DMat3::from_mat4(world).inverse().transpose();
+    let mut positions = Vec::new();
+    let mut triangles = Vec::new();
+    let mut uvs: Vec<Option<[f32; 2]>> = Vec::new();
+    let mut normals: Vec<Option<DVec3>> = Vec::new();
+    for (pi, (pos, indices, mode)) in gltf_read::primitives(&doc.root, mesh)
+        .into_iter()
+        .enumerate()
+    {
+        let err = |reason: &str| PrepError::GltfPrimitive {
+            mesh: labels[mesh].clone(),
+            primitive: pi,
+            reason: reason.to_owned(),
+        };
+        let pos = pos.ok_or_else(|| err("no POSITION attribute"))?;
+        let base = positions.len() as u32;
+        let pos: Vec<DVec3> = doc
+            .read_vec3(pos)?
+            .into_iter()
+            .map(|p| world.transform_point3(p))
+            .collect();
+        let n = pos.len() as u32;
+        limits.check_count(
+            "positions",
+            (positions.len() + pos.len()) as u64,
+            limits.max_positions,
+        )?;
+        use gltf::json::mesh::Semantic;
+        let end = positions.len() + pos.len();
+        if let Some(a) = gltf_read::attribute(&doc.root, mesh, pi, Semantic::TexCoords(0)) {
+            uvs.extend(doc.read_texcoords(a)?.into_iter().map(Some));
+        }
+        uvs.resize(end, None);
+        if let Some(a) = gltf_read::attribute(&doc.root, mesh, pi, Semantic::Normals) {
+            let read = doc.read_vec3(a)?;
+            normals.extend(
+                read.into_iter()
+                    .map(|n| (normal_matrix * n).try_normalize()),
+            );
+        }
+        normals.resize(end, None);
+        positions.extend(pos);
+        let idx: Vec<u32> = match indices {
+            Some(i) => doc.read_indices(i)?,
+            None => (0..n).collect(),
+        };
+        let tris = primitive_triangles(&idx, mode, err)?;
+        limits.check_count(
+            "triangles",
+            (triangles.len() + tris.len()) as u64,
+            limits.max_triangles,
+        )?;
+        for t in tris {
+            if let Some(&i) = t.iter().find(|&&i| i >= n) {
+                return Err(err(&format!(
+                    "index {i} is beyond the POSITION accessor's {n} elements"
+                )));
+            }
+            triangles.push(t.map(|i| i + base));
+        }
+    }
+    if world.determinant() < 0.0 {
+        for t in &mut triangles {
+            t.swap(1, 2);
+        }
+    }
+    Ok(GltfFaceData {
+        positions,
+        triangles,
+        uvs: uvs
+            .iter()
+            .any(Option::is_some)
+            .then(|| uvs.iter().map(|t| t.unwrap_or([0.0; 2])).collect()),
+        normals: normals.iter().any(Option::is_some).then_some(normals),
+    })
+}
+
+/// Index of the mesh named `mesh_name` (the first mesh without a name); `labels` are the
+/// meshes' labels ([`gltf_read::mesh_labels`]).
+fn select_mesh(
+    doc: &Document,
+    labels: &[String],
+    mesh_name: Option<&str>,
+) -> Result<usize, PrepError> {
+    Ok(match mesh_name {
+        None if labels.is_empty() => return Err(PrepError::GltfNoMesh),
+        None => 0,
+        Some(name) => doc
+            .root
+            .meshes
+            .iter()
+            .position(|m| m.name.as_deref() == Some(name))
+            .ok_or_else(|| PrepError::GltfMeshNotFound {
+                name: name.to_owned(),
+                available: labels.to_vec(),
+            })?,
+    })
+}
+
+/// The triangles of a primitive of mode `mode` over the indices `idx` (a list, strip or fan);
+/// any other mode is an error (`err`).
+fn primitive_triangles(
+    idx: &[u32],
+    mode: gltf::json::validation::Checked<gltf::json::mesh::Mode>,
+    err: impl Fn(&str) -> PrepError,
+) -> Result<Vec<[u32; 3]>, PrepError> {
+    use gltf::json::mesh::Mode;
+    use gltf::json::validation::Checked;
+    Ok(match mode {
+        Checked::Valid(Mode::Triangles) => {
+            idx.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect()
+        }
+        Checked::Valid(Mode::TriangleStrip) => (2..idx.len())
+            .map(|k| {
+                if k % 2 == 0 {
+                    [idx[k - 2], idx[k - 1], idx[k]]
+                } else {
+                    [idx[k - 1], idx[k - 2], idx[k]]
+                }
+            })
+            .collect(),
+        Checked::Valid(Mode::TriangleFan) => (2..idx.len())
+            .map(|k| [idx[0], idx[k - 1], idx[k]])
+            .collect(),
+        Checked::Valid(other) => {
+            return Err(err(&format!("mode {other:?} is not a triangle mode")));
+        }
+        Checked::Invalid => return Err(err("invalid mode")),
+    })
+}
+
+fn gltf_mesh(
+    bytes: &[u8],
+    base: Option<&Path>,
+    mesh_name: Option<&str>,
+    limits: &InputLimits,
+) -> Result<FaceMesh, PrepError> {
+    let data = gltf_face_data(bytes, base, mesh_name, limits)?;
+    FaceMesh::from_triangles(&data.positions, &data.triangles)
+}
+
+/// Loads a face mesh, dispatching on the extension: `.obj` (tobj), `.gltf` or `.glb` (gltf,
+/// first mesh). See [`load_face_mesh_named`] to pick a glTF mesh by name.
+///
+/// ```
+/// let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+///     .join("../../assets/mediapipe_canonical_4loop.obj");
+/// let face = face_prep::load_face(&path).unwrap();
+/// assert_eq!(face.triangles.len(), 852);
+/// ```
+pub fn load_face(path: &Path) -> Result<FaceMesh, PrepError> {
+    load_face_mesh_named(path, None)
+}
+
+/// Like [`load_face`]; for glTF/GLB, `mesh_name` selects the mesh (ignored for OBJ).
+pub fn load_face_mesh_named(path: &Path, mesh_name: Option<&str>) -> Result<FaceMesh, PrepError> {
+    load_face_with_limits(path, mesh_name, &InputLimits::default())
+}
+
+/// Like [`load_face_mesh_named`], with explicit input size limits (file bytes, positions,
+/// triangles), checked before the data is allocated.
+///
+/// ```
+/// use face_prep::{InputLimits, PrepError};
+/// let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+///     .join("../../assets/mediapipe_canonical_4loop.obj");
+/// let small = InputLimits { max_triangles: 100, ..InputLimits::default() };
+/// let err = face_prep::load_face_with_limits(&path, None, &small).unwrap_err();
+/// assert!(matches!(err, PrepError::TooLarge { what: "triangles", .. }), "{err}");
+/// ```
+pub fn load_face_with_limits(
+    path: &Path,
+    mesh_name: Option<&str>,
+    limits: &InputLimits,
+) -> Result<FaceMesh, PrepError> {
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .unwrap_or("")
+        .to_ascii_lowercase();
+    let read = || read_input_file(path, limits);
+    match ext.as_str() {
+        "obj" => FaceMesh::from_obj_bytes(&read()?, limits),
+        "gltf" | "glb" => gltf_mesh(&read()?, path.parent(), mesh_name, limits),
+        _ => Err(PrepError::UnsupportedExtension {
+            path: path.to_owned(),
+            extension: ext,
+        }),
+    }
+}

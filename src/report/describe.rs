@@ -1,0 +1,140 @@
+//! Human-readable summary of a face, its rig and (if computed) its model, for `facebem info`.
+
+use std::fmt::Write;
+use std::path::Path;
+
+use face_prep::{Box2, ElementTag, FaceMesh, FaceRig};
+
+use crate::FaceModel;
+
+/// Multi-line summary: sizes, loops, feature boxes (canonical frame), muscles, skull, and for a
+/// computed model its parameters, precompute figures and largest displacement per muscle.
+pub fn describe(path: &Path, mesh: &FaceMesh, rig: &FaceRig, model: Option<&FaceModel>) -> String {
+    let mut s = String::new();
+    let kind = if model.is_some() { "rig" } else { "face mesh" };
+    let _ = writeln!(s, "{} ({kind})", path.display());
+    let _ = writeln!(
+        s,
+        "  face: {} vertices, {} triangles",
+        mesh.vertices.len(),
+        mesh.triangles.len()
+    );
+    if rig.face_triangle_count != mesh.triangles.len() {
+        let _ = writeln!(
+            s,
+            "  simulated on a reduced copy (rolled-in parts peeled, large faces simplified): {} vertices, {} triangles",
+            rig.face_vertex_count, rig.face_triangle_count
+        );
+    }
+    let _ = writeln!(s, "  {}", rig.unit_choice().describe());
+    let count = |tag| rig.shell.tags.iter().filter(|t| **t == tag).count();
+    let _ = writeln!(
+        s,
+        "  shell: {} vertices, {} elements ({} front, {} back, {} rim), {} DOFs",
+        rig.shell.vertices.len(),
+        rig.shell.triangles.len(),
+        count(ElementTag::Front),
+        count(ElementTag::Back),
+        count(ElementTag::Rim),
+        3 * rig.shell.triangles.len()
+    );
+    for w in model.map(|m| m.report.warnings()).unwrap_or_default() {
+        let _ = writeln!(s, "  WARNING: {w}");
+    }
+    let l = &rig.loops;
+    let _ = writeln!(
+        s,
+        "  loops (vertices): face {}, eye L {}, eye R {}, mouth {}",
+        l.face.len(),
+        l.eye_l.len(),
+        l.eye_r.len(),
+        l.mouth.len()
+    );
+    let _ = writeln!(
+        s,
+        "  feature boxes (canonical x-y, face size {:.4}):",
+        rig.face_size
+    );
+    let b = &rig.boxes;
+    for (name, bx) in [
+        ("face", &b.face),
+        ("eye L", &b.eye_l),
+        ("eye R", &b.eye_r),
+        ("mouth", &b.mouth),
+        ("nose", &b.nose),
+        ("skull", &b.skull),
+    ] {
+        let _ = writeln!(s, "    {name:<6} {}", fmt_box(bx));
+    }
+    let _ = writeln!(s, "  skull: {} fixed elements", rig.skull.len());
+    let _ = writeln!(s, "  muscles: {}", rig.muscles.len());
+    for (k, m) in rig.muscles.iter().enumerate() {
+        let id = m.kind.map_or(m.name.as_str(), |k| k.id());
+        let _ = write!(
+            s,
+            "    {id:<30} front {:>3}, back {:>3} elements",
+            m.front_chain.len(),
+            m.back_chain.len()
+        );
+        if let Some(field) = model.and_then(|m| m.basis.displacements.get(k)) {
+            let max = field.iter().map(|d| d.length()).fold(0.0, f64::max);
+            let _ = write!(
+                s,
+                ", max vertex displacement {:.2} mm",
+                max * rig.mm_per_unit()
+            );
+        }
+        s.push('\n');
+    }
+    if let Some(m) = model {
+        let r = &m.report;
+        let _ = writeln!(
+            s,
+            "  solve: nu {}, {} DOFs; prep {:.2} s, BEM {:.2} s, transfer {:.2} s",
+            m.params.poisson, r.dofs, r.prep_seconds, r.solve_seconds, r.transfer_seconds
+        );
+    }
+    s
+}
+
+fn fmt_box(b: &Box2) -> String {
+    format!(
+        "x {:>9.4} .. {:>9.4}   y {:>9.4} .. {:>9.4}",
+        b.min.x, b.max.x, b.min.y, b.max.y
+    )
+}
+
+/// What `facebem info` can still say about a mesh whose rig cannot be built: its size and the
+/// boundary loops it has (edges, perimeter, bounding box in the input frame).
+///
+/// ```
+/// let mesh = facebem::input::default_face().unwrap();
+/// let text = facebem::report::describe::describe_loops("face.obj".as_ref(), &mesh);
+/// assert!(text.contains("4 boundary loops"), "{text}");
+/// ```
+pub fn describe_loops(path: &Path, mesh: &FaceMesh) -> String {
+    let mut s = String::new();
+    let _ = writeln!(s, "{} (face mesh)", path.display());
+    let _ = writeln!(
+        s,
+        "  face: {} vertices, {} triangles",
+        mesh.vertices.len(),
+        mesh.triangles.len()
+    );
+    if let Ok(loops) = face_prep::topology::validate(&mesh.vertices, &mesh.triangles) {
+        let _ = writeln!(s, "  {} boundary loops:", loops.len());
+        let summaries = face_prep::topology::loop_summaries(&mesh.vertices, &loops);
+        for (i, (l, sum)) in loops.iter().zip(&summaries).enumerate().take(10) {
+            let perimeter = face_prep::orient::loop_perimeter(&mesh.vertices, l);
+            let _ = writeln!(
+                s,
+                "    loop {i}: perimeter {}, {sum}",
+                face_prep::error::sig6(perimeter)
+            );
+        }
+        if loops.len() > 10 {
+            let _ = writeln!(s, "    and {} more", loops.len() - 10);
+        }
+    }
+    s
+}
