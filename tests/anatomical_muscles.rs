@@ -510,3 +510,20 @@ fn modiolus_elements_move_by_their_pin() {
         assert_eq!(pinned, 10, "{}", support::FACES[face]);
     }
 }
+
+/// Every bundled face's default rig is within every trust threshold (issue 30): the command
+/// line writes it without `--force`. The figures the thresholds are set against: each control's
+/// largest motion and its ratio to its muscle's shortening.
+#[test]
+fn every_bundled_face_is_trusted() {
+    for face in 0..support::FACES.len() {
+        let m = model(face);
+        let causes = facebem::model::distrust(m);
+        assert!(causes.is_empty(), "{}: {causes:?}", support::FACES[face]);
+        assert!(
+            m.report.response_amplification < facebem::SUSPICIOUS_AMPLIFICATION,
+            "{}",
+            support::FACES[face]
+        );
+    }
+}

@@ -7,6 +7,7 @@ mod basis;
 mod error;
 mod params;
 mod report;
+mod trust;
 
 use face_prep::{FaceMesh, FaceRig};
 use glam::DVec3;
@@ -20,6 +21,9 @@ pub use basis::{MuscleBasis, PoseError};
 pub use error::PipelineError;
 pub use params::PipelineParams;
 pub use report::{PrecomputeReport, SUSPICIOUS_AMPLIFICATION, SUSPICIOUS_FORCE_PEAK};
+pub use trust::{
+    MAX_JAW_MOTION_MM, MAX_MOTION_OUTSIDE_JAW_MM, MAX_MOTION_PER_SHORTENING, distrust,
+};
 
 /// A computed face: input mesh, rig, muscle basis and the parameters it was computed with.
 ///

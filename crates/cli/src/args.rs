@@ -41,6 +41,11 @@ pub(crate) enum Command {
         muscles: Option<PathBuf>,
         #[command(flatten)]
         solver: SolverArgs,
+        /// Write it even when the rig is not trustworthy (a near-singular solve, a shell that
+        /// crosses itself, a control that moves the skin past the documented limits); the
+        /// causes are printed as warnings.
+        #[arg(long)]
+        force: bool,
     },
     /// Print loops, feature boxes, muscles and sizes of a face or rig file.
     Info {
@@ -63,6 +68,11 @@ pub(crate) enum Command {
         /// Output OBJ.
         #[arg(short, long)]
         output: PathBuf,
+        /// Write it even when the rig is not trustworthy (a near-singular solve, a shell that
+        /// crosses itself, a control that moves the skin past the documented limits); the
+        /// causes are printed as warnings.
+        #[arg(long)]
+        force: bool,
     },
     /// Export glTF 2.0 (metres, the input's vertex order and texture coordinates) with one
     /// morph target per muscle action and preset.
@@ -81,6 +91,11 @@ pub(crate) enum Command {
         /// comma-separated list. ARKit and VRM targets come first.
         #[arg(long, default_value = "all", value_parser = NameSets::parse)]
         names: NameSets,
+        /// Write it even when the rig is not trustworthy (a near-singular solve, a shell that
+        /// crosses itself, a control that moves the skin past the documented limits); the
+        /// causes are printed as warnings.
+        #[arg(long)]
+        force: bool,
     },
     /// Write the automatically placed muscles of a face as a muscle file (thesis format).
     Muscles {

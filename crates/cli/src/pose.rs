@@ -7,7 +7,7 @@ use facebem::expressions::{self, NameSet, NameSets, presets};
 use facebem::input::Opened;
 
 use crate::open;
-use crate::rig::{model_from, model_from_opened};
+use crate::rig::{check_trust, model_from, model_from_opened};
 
 fn parse_set(s: &str) -> Result<(String, f64)> {
     let (id, value) = s
@@ -23,7 +23,13 @@ fn parse_set(s: &str) -> Result<(String, f64)> {
     Ok((id.trim().to_string(), value))
 }
 
-pub(crate) fn pose(rig: &Path, sets: &[String], preset: Option<&str>, output: &Path) -> Result<()> {
+pub(crate) fn pose(
+    rig: &Path,
+    sets: &[String],
+    preset: Option<&str>,
+    output: &Path,
+    force: bool,
+) -> Result<()> {
     facebem::check_output(output, &[rig], &["obj"], "a pose (OBJ)")?;
     let parsed: Vec<(String, f64)> = sets.iter().map(|s| parse_set(s)).collect::<Result<_>>()?;
     if let Some(name) = preset
@@ -54,6 +60,7 @@ pub(crate) fn pose(rig: &Path, sets: &[String], preset: Option<&str>, output: &P
         bail!("unknown muscle {id:?} (known: {}{more})", shown.join(", "));
     }
     let model = model_from_opened(rig, opened)?;
+    check_trust(&model, force)?;
     let ids = model.muscle_ids().to_vec();
     let mut sliders = vec![0.0; ids.len()];
     if let Some(name) = preset {
@@ -82,9 +89,16 @@ pub(crate) fn pose(rig: &Path, sets: &[String], preset: Option<&str>, output: &P
     Ok(())
 }
 
-pub(crate) fn export(rig: &Path, gltf: &Path, animation: bool, names: NameSets) -> Result<()> {
+pub(crate) fn export(
+    rig: &Path,
+    gltf: &Path,
+    animation: bool,
+    names: NameSets,
+    force: bool,
+) -> Result<()> {
     facebem::check_output(gltf, &[rig], &["glb", "gltf"], "a glTF export")?;
     let model = model_from(rig)?;
+    check_trust(&model, force)?;
     let params = facebem::export::GltfParams {
         animation,
         names,

@@ -59,11 +59,31 @@ pub(crate) fn model_from_opened(path: &Path, opened: Opened) -> Result<FaceModel
     }
 }
 
+/// Refuses an untrustworthy rig ([`facebem::model::distrust`]) with one line naming every
+/// cause, unless `force`: then each cause is printed as a warning and the caller goes on.
+pub(crate) fn check_trust(model: &FaceModel, force: bool) -> Result<()> {
+    let causes = facebem::model::distrust(model);
+    if causes.is_empty() {
+        return Ok(());
+    }
+    if force {
+        for cause in &causes {
+            eprintln!("warning: untrustworthy rig, written because of --force: {cause}");
+        }
+        return Ok(());
+    }
+    bail!(
+        "the rig is not trustworthy: {} (--force writes it anyway)",
+        causes.join("; ")
+    )
+}
+
 pub(crate) fn rig(
     face: &Path,
     output: &Path,
     muscles: Option<&Path>,
     solver: &SolverArgs,
+    force: bool,
 ) -> Result<()> {
     let inputs: Vec<&Path> = std::iter::once(face).chain(muscles).collect();
     facebem::check_output(output, &inputs, &["rig"], "a rig file")?;
@@ -98,6 +118,7 @@ pub(crate) fn rig(
         params.muscles = Some(list);
     }
     let model = compute(&mesh, obj_source, &params)?;
+    check_trust(&model, force)?;
     cache::save(output, &model)?;
     let r = &model.report;
     for w in r.warnings() {

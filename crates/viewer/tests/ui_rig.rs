@@ -281,6 +281,15 @@ fn a_rig_with_intersecting_shell_elements_is_flagged() {
         "{}",
         msg.text
     );
+    // Past the trust thresholds (issue 30): the refusal the command line would give, in red.
+    assert!(
+        msg.text.contains("This rig is not trustworthy")
+            && msg
+                .text
+                .contains(&format!("crosses itself ({crossings} element pairs)")),
+        "{}",
+        msg.text
+    );
 }
 
 #[test]

@@ -102,8 +102,16 @@ impl ViewerApp {
                         ),
                     };
                     let warnings = model.report.warnings();
+                    let distrust = facebem::model::distrust(&model);
                     self.set_model(name, model);
-                    if warnings.is_empty() {
+                    if !distrust.is_empty() {
+                        // In red: the command line refuses to write this rig without --force.
+                        let mut message = format!("{text}. {}", untrustworthy(&distrust));
+                        if !warnings.is_empty() {
+                            message += &format!(". Warning: {}", warnings.join("; "));
+                        }
+                        self.error(message);
+                    } else if warnings.is_empty() {
                         self.info(text);
                     } else {
                         // Shown as an error: these responses are not trustworthy.
@@ -120,11 +128,17 @@ impl ViewerApp {
     pub(super) fn opened(&mut self, ctx: &egui::Context, result: Result<(String, Opened), String>) {
         match result {
             Ok((name, Opened::Model(model))) => {
-                self.info(format!(
+                let text = format!(
                     "Opened the saved rig {name} ({} triangles, {} muscles)",
                     model.basis.triangles.len(),
                     model.basis.muscle_count()
-                ));
+                );
+                let distrust = facebem::model::distrust(&model);
+                if distrust.is_empty() {
+                    self.info(text);
+                } else {
+                    self.error(format!("{text}. {}", untrustworthy(&distrust)));
+                }
                 self.cancel_rig();
                 self.rigging = None;
                 self.set_model(name, *model);
@@ -189,5 +203,13 @@ pub(super) fn file_name(path: &Path) -> String {
     path.file_name().map_or_else(
         || path.display().to_string(),
         |n| n.to_string_lossy().into_owned(),
+    )
+}
+
+/// The status line of a rig past the trust thresholds ([`facebem::model::distrust`]).
+fn untrustworthy(causes: &[String]) -> String {
+    format!(
+        "This rig is not trustworthy (the command line refuses to write it without --force): {}",
+        causes.join("; ")
     )
 }
