@@ -1,6 +1,8 @@
 //! The README and every document under `docs/` link only to files that exist, the README stays a
 //! five-minute read (at most 250 lines), and no document points outside the repository.
 
+mod support;
+
 use std::path::{Path, PathBuf};
 
 fn root() -> &'static Path {
@@ -9,22 +11,8 @@ fn root() -> &'static Path {
 
 /// README.md and every `.md` file under `docs/`.
 fn documents() -> Vec<PathBuf> {
-    fn walk(dir: &Path, out: &mut Vec<PathBuf>) {
-        let mut entries: Vec<PathBuf> = std::fs::read_dir(dir)
-            .unwrap()
-            .map(|e| e.unwrap().path())
-            .collect();
-        entries.sort();
-        for path in entries {
-            if path.is_dir() {
-                walk(&path, out);
-            } else if path.extension().is_some_and(|e| e == "md") {
-                out.push(path);
-            }
-        }
-    }
     let mut out = vec![root().join("README.md")];
-    walk(&root().join("docs"), &mut out);
+    out.extend(support::files_with_extension(&root().join("docs"), "md"));
     out
 }
 

@@ -6,6 +6,8 @@
 //! Code inside `#[cfg(test)]` modules is left out: a unit test may use a module that uses its
 //! own.
 
+mod support;
+
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 
@@ -20,21 +22,6 @@ const CRATES: [&str; 6] = [
 
 fn root() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
-}
-
-fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
-    let mut entries: Vec<PathBuf> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .collect();
-    entries.sort();
-    for path in entries {
-        if path.is_dir() {
-            rust_files(&path, out);
-        } else if path.extension().is_some_and(|e| e == "rs") {
-            out.push(path);
-        }
-    }
 }
 
 /// The module path of a file relative to its crate's `src` (`settle/mod.rs` → `settle`,
@@ -133,8 +120,7 @@ fn segments(path: &str) -> Vec<String> {
 
 /// The import graph of one crate: module → modules it names.
 fn graph(src: &Path) -> BTreeMap<String, BTreeSet<String>> {
-    let mut files = Vec::new();
-    rust_files(src, &mut files);
+    let files = support::files_with_extension(src, "rs");
     let modules: BTreeSet<String> = files.iter().map(|f| module_of(src, f)).collect();
     let mut edges = BTreeMap::new();
     for file in &files {
@@ -255,8 +241,7 @@ fn no_source_file_over_650_lines_and_no_function_over_130() {
         dirs.push(root().join(extra));
     }
     for dir in dirs {
-        let mut files = Vec::new();
-        rust_files(&dir, &mut files);
+        let files = support::files_with_extension(&dir, "rs");
         for file in files {
             let text = std::fs::read_to_string(&file).unwrap();
             let lines: Vec<&str> = text.lines().collect();

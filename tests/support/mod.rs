@@ -21,6 +21,24 @@ pub fn root() -> PathBuf {
         .to_path_buf()
 }
 
+/// Every file under `dir` (recursively, sorted) whose name ends with `.{extension}`.
+pub fn files_with_extension(dir: &Path, extension: &str) -> Vec<PathBuf> {
+    let mut out = Vec::new();
+    let mut entries: Vec<PathBuf> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .collect();
+    entries.sort();
+    for path in entries {
+        if path.is_dir() {
+            out.extend(files_with_extension(&path, extension));
+        } else if path.extension().is_some_and(|e| e == extension) {
+            out.push(path);
+        }
+    }
+    out
+}
+
 /// Path of a bundled face.
 pub fn asset(name: &str) -> PathBuf {
     root().join("assets").join(name)
