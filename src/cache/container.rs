@@ -45,6 +45,7 @@ pub const HEADER_LEN: usize = 8 + 4 + 32 + 32 + 8 + 32;
 
 /// Errors reading a cache container.
 #[derive(Debug, thiserror::Error, PartialEq)]
+#[non_exhaustive]
 pub enum ContainerError {
     /// The file is shorter than the header or than its declared payload.
     #[error("cache file is truncated: {len} bytes, expected {expected}")]

@@ -31,6 +31,7 @@ pub const MAX_RIG_BYTES: u64 = 1 << 30;
 
 /// Errors saving or loading a cache file.
 #[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
 pub enum CacheError {
     /// The file could not be read.
     #[error("cannot read cache {path}: {source}")]

@@ -69,6 +69,7 @@ pub struct LargeFaceParams {
 /// assert_eq!(CopyMethod::parse("decimate"), None);
 /// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[non_exhaustive]
 pub enum CopyMethod {
     /// meshoptimizer's edge collapses; the copy's vertices are input vertices.
     #[default]
@@ -105,6 +106,7 @@ impl Default for LargeFaceParams {
 
 /// Errors from simplification.
 #[derive(Debug, thiserror::Error, PartialEq)]
+#[non_exhaustive]
 pub enum SimplifyError {
     /// The target triangle count is too small to be a face.
     #[error("target of {0} triangles is too small (need at least 16)")]

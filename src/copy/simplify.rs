@@ -30,6 +30,7 @@ const QUANTUM: f64 = 1.0 / (1u64 << 20) as f64;
 
 /// How a face was simplified by [`simplify_face`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[non_exhaustive]
 pub enum SimplifyPath {
     /// Left half simplified and mirrored (a mirror-symmetric face).
     Mirrored,

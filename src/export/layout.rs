@@ -24,6 +24,7 @@ use glam::DVec3;
 
 /// Errors building an [`ExportLayout`] from an OBJ text.
 #[derive(Debug, thiserror::Error, PartialEq)]
+#[non_exhaustive]
 pub enum LayoutError {
     /// A face corner refers to a `v`, `vt` or `vn` that does not exist or is not a number.
     #[error("OBJ line {line}: bad face corner {corner:?}")]

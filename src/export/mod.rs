@@ -20,6 +20,7 @@ use crate::atomic_write::{WriteError, write_atomic};
 
 /// Errors from writing an export file.
 #[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
 pub enum ExportError {
     /// Building the glTF failed.
     #[error(transparent)]

@@ -9,6 +9,7 @@ use glam::DVec3;
 
 /// Errors from OBJ export.
 #[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
 pub enum ObjExportError {
     /// The template OBJ has a different number of `v` lines than the input map expects.
     #[error("the original OBJ has {found} `v` lines but the face was loaded from {expected}")]

@@ -42,6 +42,7 @@ pub mod presets;
 
 /// The naming standard an expression belongs to.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
 pub enum NameSet {
     /// facebem's own targets: `<muscle id>_contract`/`_relax` and `preset_<name>`.
     Facebem,
@@ -156,6 +157,7 @@ impl NameSets {
 
 /// How a named expression is made from the rig's controls.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub enum Definition {
     /// Slider values of control ids ([`AGREED_CONTROL_IDS`]); controls not named are 0.
     Terms(&'static [(&'static str, f64)]),
@@ -354,6 +356,7 @@ pub fn for_rig(
 
 /// Errors looking up an expression by name for a rig.
 #[derive(Debug, thiserror::Error, PartialEq)]
+#[non_exhaustive]
 pub enum LookupError {
     /// No facebem preset, ARKit name or VRM preset has this name.
     #[error("unknown preset or expression name {0:?}")]

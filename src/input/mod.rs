@@ -57,6 +57,7 @@ pub const DEFAULT_FACE_OBJ: &str = include_str!("../../assets/mediapipe_canonica
 
 /// Errors opening a face or rig.
 #[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
 pub enum OpenError {
     /// The file could not be read.
     #[error("cannot read {path}: {source}")]
@@ -86,6 +87,7 @@ pub enum OpenError {
 
 /// What a file turned out to hold.
 #[derive(Debug)]
+// Exhaustive on purpose: a caller handles every outcome (a new one must not be ignored).
 pub enum Opened {
     /// A face mesh that still needs [`build_face_model`]; `obj_source` is its layout as OBJ
     /// text (see [`read_face`]).
@@ -188,6 +190,7 @@ fn face_from_bytes(
 
 /// Whether a cache was used or the model was computed.
 #[derive(Clone, Debug, PartialEq)]
+// Exhaustive on purpose: a caller handles every outcome (a new one must not be ignored).
 pub enum CacheStatus {
     /// The cache file matched and was loaded.
     Loaded,

@@ -34,6 +34,7 @@ pub struct MuscleBasis {
 
 /// Errors from posing a basis.
 #[derive(Debug, thiserror::Error, PartialEq)]
+#[non_exhaustive]
 pub enum PoseError {
     /// The slider vector does not have one value per muscle.
     #[error("expected {expected} slider values (one per muscle), got {got}")]

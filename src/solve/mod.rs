@@ -185,7 +185,8 @@ fn run_bem(
         let stage = match p.stage {
             bem_core::Stage::Assembly => Stage::Assembly,
             bem_core::Stage::Factorisation => Stage::Factorisation,
-            bem_core::Stage::Solve => Stage::Solves,
+            // The solves, and any later stage bem-core adds.
+            _ => Stage::Solves,
         };
         control.report(stage, p.done as u64, p.total as u64);
     };
@@ -198,7 +199,8 @@ fn run_bem(
     // in mixed precision (the LU in f32, refined to f64 accuracy; bem_core::MixedLu).
     let precision = match rig.params.muscle_model {
         MuscleModel::Thesis => bem_core::Precision::Double,
-        MuscleModel::Anatomical => bem_core::Precision::Mixed,
+        // The anatomical model, and any later one: the faster default.
+        _ => bem_core::Precision::Mixed,
     };
     let params = SolveParams {
         quadrature,

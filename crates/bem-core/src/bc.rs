@@ -6,6 +6,7 @@ use crate::BemError;
 
 /// Boundary condition of one element.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[non_exhaustive]
 pub enum BoundaryCondition {
     /// Prescribed displacement (the traction is unknown).
     Displacement(DVec3),
@@ -33,6 +34,7 @@ impl BoundaryCondition {
 /// What is prescribed on an element in every load case of a [`crate::LinearSystem`] (the
 /// split of the unknowns; the values come from [`Loads`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
+#[non_exhaustive]
 pub enum ElementKind {
     /// The traction is prescribed (zero unless a load case sets it): u is unknown.
     Traction,

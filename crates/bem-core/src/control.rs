@@ -6,6 +6,7 @@ use crate::BemError;
 
 /// Stage of a solve.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum Stage {
     /// Column-block assembly of K and the right-hand sides (`done`/`total` = element columns).
     Assembly,

@@ -4,6 +4,7 @@ use thiserror::Error;
 
 /// Why a surface mesh was rejected by [`crate::SurfaceMesh::new`].
 #[derive(Debug, Clone, PartialEq, Error)]
+#[non_exhaustive]
 pub enum MeshError {
     /// The mesh has no triangle.
     #[error("the surface mesh has no triangles")]
@@ -101,6 +102,7 @@ pub enum MeshError {
 
 /// Errors of the boundary element solve.
 #[derive(Debug, Clone, PartialEq, Error)]
+#[non_exhaustive]
 pub enum BemError {
     /// Poisson ratio outside [0, 0.5).
     #[error("Poisson ratio {0} is outside [0, 0.5)")]

@@ -40,6 +40,7 @@ pub struct SolveParams {
 /// assert_eq!(bem_core::SolveParams::default().precision, bem_core::Precision::Mixed);
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[non_exhaustive]
 pub enum Precision {
     /// The LU in f32 with the answer refined to f64 accuracy ([`crate::MixedLu`]), falling
     /// back to [`Precision::Double`] where that does not converge or the f32 copy does not fit
@@ -64,6 +65,7 @@ impl Default for SolveParams {
 
 /// What to do with a problem that prescribes no displacement anywhere (rigid-body modes).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[non_exhaustive]
 pub enum RigidModes {
     /// Reject it with [`BemError::PureTraction`](crate::BemError::PureTraction).
     #[default]

@@ -182,6 +182,7 @@ fn process_alive(pid: u32) -> bool {
 
 /// Why an output path is refused by [`check_output`].
 #[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
 pub enum OutputPathError {
     /// The extension does not match the format that is written.
     #[error("output {path}: {what} must end in {}", expected.join(" or "))]

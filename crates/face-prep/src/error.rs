@@ -119,6 +119,7 @@ pub const MAX_COORDINATE: f64 = 1e9;
 
 /// What is wrong with a glTF/GLB file.
 #[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
 pub enum GltfError {
     /// The GLB container is malformed.
     #[error("GLB container: {0}")]
@@ -150,6 +151,7 @@ pub enum GltfError {
 
 /// Everything that can go wrong turning a face mesh into a rig.
 #[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
 pub enum PrepError {
     /// The file could not be read.
     #[error("cannot read {path}: {source}")]
@@ -389,6 +391,7 @@ pub enum PrepError {
 
 /// Errors reading or writing a muscle file (thesis §7.6 format). Line numbers are 1-based.
 #[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
 pub enum MuscleFileError {
     /// I/O failure.
     #[error("muscle file I/O error: {0}")]

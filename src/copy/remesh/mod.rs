@@ -138,6 +138,7 @@ pub struct Remeshed {
 
 /// Why a surface could not be remeshed.
 #[derive(Debug, thiserror::Error, PartialEq)]
+#[non_exhaustive]
 pub enum RemeshError {
     /// The input is not a valid surface with borders.
     #[error("cannot remesh: the input is not a valid surface ({0})")]

@@ -48,6 +48,7 @@ pub const MATERIAL_NAME: &str = "facebem_skin";
 
 /// Container format of a glTF export.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum GltfFormat {
     /// Binary `.glb`: JSON chunk + BIN chunk.
     Binary,
@@ -107,6 +108,7 @@ impl Default for GltfParams {
 
 /// Errors from glTF export.
 #[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
 pub enum GltfExportError {
     /// The basis has no vertices or no triangles.
     #[error("cannot export an empty mesh ({vertices} vertices, {triangles} triangles)")]

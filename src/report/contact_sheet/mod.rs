@@ -73,6 +73,7 @@ impl SheetCell {
 
 /// Which poses [`standard_cells`] puts on the sheet.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+#[non_exhaustive]
 pub enum Selection {
     /// Neutral, each muscle at full contraction, each other preset.
     #[default]
@@ -128,6 +129,7 @@ impl Default for SheetOptions {
 
 /// Errors drawing or writing a sheet.
 #[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
 pub enum SheetError {
     /// A cell's slider vector does not fit the model.
     #[error("sheet cell {label:?}: {source}")]

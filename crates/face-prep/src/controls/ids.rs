@@ -7,6 +7,7 @@ use serde::{Deserialize, Serialize};
 
 /// Which side of the face a control is on. "Left" is the face's own left, i.e. +x in the
 /// canonical frame (the face looks toward +z).
+// Exhaustive on purpose: a face has a left, a right and a midline, no other side.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
 pub enum Side {
     /// The face's left (+x in the canonical frame).
@@ -30,6 +31,7 @@ impl Side {
 
 /// One rigid mode of the jaw.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
 pub enum JawMode {
     /// Rotation about the TMJ axis (mouth opening).
     Open,
@@ -41,6 +43,7 @@ pub enum JawMode {
 
 /// What a lid muscle does at full activation (slider −1).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[non_exhaustive]
 pub enum LidAction {
     /// Orbicularis oculi, palpebral part: the upper margin closes onto the lower margin.
     Blink,
@@ -52,6 +55,7 @@ pub enum LidAction {
 
 /// Which half of the mouth's sphincter a [`Generator::Sphincter`](crate::controls::muscle_kind::Generator::Sphincter) control is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
 pub enum Lip {
     /// Above the mouth's centre line.
     Upper,

@@ -48,6 +48,7 @@ use serde::{Deserialize, Serialize};
 
 /// Which muscle models place a control.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
 pub enum Placed {
     /// Both the thesis model and the anatomical model (only the original ten muscles).
     Thesis,
@@ -57,6 +58,7 @@ pub enum Placed {
 
 /// How a control is placed on the shell and what displacement it prescribes.
 #[derive(Clone, Copy, Debug)]
+#[non_exhaustive]
 pub enum Generator {
     /// A muscle band from a bony origin to a skin insertion ([`crate::controls::muscle_model`]): the
     /// function gives the attachment of the face's-left twin (or of an unpaired control) from
@@ -124,6 +126,7 @@ macro_rules! controls {
         /// assert_eq!(&MuscleKind::ALL[..10], &MuscleKind::THESIS[..]);
         /// ```
         #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+        #[non_exhaustive]
         pub enum MuscleKind {
             $( $(#[$doc])* $variant, )*
         }

@@ -55,6 +55,7 @@ pub const CUSTOM_MAX_STRAIN: f64 = 0.2;
 /// assert_eq!(MuscleModel::parse("thesis"), Some(MuscleModel::Thesis));
 /// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[non_exhaustive]
 pub enum MuscleModel {
     /// The thesis's chains, each element moved by one element spacing (reproducible).
     Thesis,
@@ -76,6 +77,7 @@ impl MuscleModel {
 
 /// Which layer of the shell a muscle's band is prescribed on.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[non_exhaustive]
 pub enum BandLayer {
     /// The skin (front elements).
     Front,

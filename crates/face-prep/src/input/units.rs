@@ -32,6 +32,7 @@ pub const PLAUSIBLE_INTEROCULAR_MM: (f64, f64) = (40.0, 95.0);
 /// assert_eq!(LengthUnit::Millimetre.symbol(), "mm");
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[non_exhaustive]
 pub enum LengthUnit {
     /// 1 unit = 1 mm.
     Millimetre,
@@ -111,6 +112,7 @@ impl std::fmt::Display for LengthUnit {
 /// assert_eq!(Units::default(), Units::Auto);
 /// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[non_exhaustive]
 pub enum Units {
     /// Estimated from the distance between the eye-loop centres ([`detect_unit`]).
     #[default]

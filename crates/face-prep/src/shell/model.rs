@@ -8,6 +8,7 @@ use super::intersect::intersecting_pairs;
 
 /// Which part of the shell an element belongs to.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[non_exhaustive]
 pub enum ElementTag {
     /// A triangle of the user's face (normal toward +z).
     Front,

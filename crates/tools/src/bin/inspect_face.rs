@@ -66,7 +66,8 @@ fn gap_ratio(shell: &face_prep::Shell, e: usize) -> f64 {
     let other = match shell.tags[e] {
         ElementTag::Front => ElementTag::Back,
         ElementTag::Back => ElementTag::Front,
-        ElementTag::Rim => return f64::INFINITY,
+        // The rim, and any other kind of element: no other side.
+        _ => return f64::INFINITY,
     };
     let c = shell.centroid(e);
     let [a, b, d] = shell.corners(e);
@@ -83,7 +84,8 @@ fn nearest_other(shell: &face_prep::Shell, e: usize) -> Option<usize> {
     let other = match shell.tags[e] {
         ElementTag::Front => ElementTag::Back,
         ElementTag::Back => ElementTag::Front,
-        ElementTag::Rim => return None,
+        // The rim, and any other kind of element: no other side.
+        _ => return None,
     };
     let c = shell.centroid(e);
     (0..shell.element_count())

@@ -295,6 +295,7 @@ impl EyeMargins {
 
 /// Which lid a point belongs to.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum Lid {
     /// The upper lid (above the upper margin).
     Upper,
