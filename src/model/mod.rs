@@ -23,6 +23,7 @@ pub use params::PipelineParams;
 pub use report::{PrecomputeReport, SUSPICIOUS_AMPLIFICATION, SUSPICIOUS_FORCE_PEAK};
 pub use trust::{
     MAX_JAW_MOTION_MM, MAX_MOTION_OUTSIDE_JAW_MM, MAX_MOTION_PER_SHORTENING, distrust,
+    shortening_mm,
 };
 
 /// A computed face: input mesh, rig, muscle basis and the parameters it was computed with.

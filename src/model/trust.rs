@@ -65,6 +65,13 @@ pub fn distrust(model: &FaceModel) -> Vec<String> {
     out
 }
 
+/// The largest shortening, mm, of control `kind`'s muscle band on `model`'s face (its strain ×
+/// its origin-to-insertion length); `None` for a control that is not a muscle band.
+pub fn shortening_mm(model: &FaceModel, kind: MuscleKind) -> Option<f64> {
+    let a = face_prep::muscle_kind::attachment(kind, &model.rig.boxes)?;
+    Some(a.max_strain * (a.origin - a.insertion).length() * model.rig.mm_per_unit())
+}
+
 /// Why a control whose largest motion is `largest_mm` is not trusted, if it is not.
 fn motion_cause(model: &FaceModel, kind: Option<MuscleKind>, largest_mm: f64) -> Option<String> {
     if !largest_mm.is_finite() {
@@ -81,10 +88,7 @@ fn motion_cause(model: &FaceModel, kind: Option<MuscleKind>, largest_mm: f64) ->
             "moves the skin {largest_mm:.0} mm (trusted up to {limit_mm:.0} mm)"
         ));
     }
-    let attachment = face_prep::muscle_kind::attachment(kind?, &model.rig.boxes)?;
-    let shortening_mm = attachment.max_strain
-        * (attachment.origin - attachment.insertion).length()
-        * model.rig.mm_per_unit();
+    let shortening_mm = shortening_mm(model, kind?)?;
     (shortening_mm > 0.0 && largest_mm > MAX_MOTION_PER_SHORTENING * shortening_mm).then(|| {
         format!(
             "moves the skin {largest_mm:.0} mm, {:.1} times its muscle's shortening \

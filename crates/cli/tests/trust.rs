@@ -39,8 +39,7 @@ fn scale_to(m: &mut FaceModel, k: usize, target_mm: f64) {
 
 /// The largest shortening, mm, of a muscle band control (strain × length).
 fn shortening_mm(m: &FaceModel, k: usize) -> Option<f64> {
-    let a = face_prep::muscle_kind::attachment(m.rig.muscles[k].kind?, &m.rig.boxes)?;
-    Some(a.max_strain * (a.origin - a.insertion).length() * m.rig.mm_per_unit())
+    facebem::model::shortening_mm(m, m.rig.muscles[k].kind?)
 }
 
 #[test]

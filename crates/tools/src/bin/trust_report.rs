@@ -74,12 +74,11 @@ fn extremes(model: &FaceModel) -> (Extreme, Extreme, Extreme) {
         if largest > slot.0 {
             *slot = (largest, id.clone());
         }
-        let attachment = kind.and_then(|k| face_prep::muscle_kind::attachment(k, &model.rig.boxes));
-        if let Some(a) = attachment {
-            let shortening = a.max_strain * (a.origin - a.insertion).length() * mm;
-            if shortening > 0.0 && largest / shortening > ratio.0 {
-                ratio = (largest / shortening, id.clone());
-            }
+        if let Some(shortening) = kind.and_then(|k| facebem::model::shortening_mm(model, k))
+            && shortening > 0.0
+            && largest / shortening > ratio.0
+        {
+            ratio = (largest / shortening, id.clone());
         }
     }
     (muscle, jaw, ratio)
