@@ -18,6 +18,8 @@ use crate::solve::Solved;
 /// The prep step alone (fast, no BEM): the input's frame, rolled-in parts peeled off,
 /// simplification of a large face, rig, muscle override.
 pub fn prepare(mesh: &FaceMesh, params: &PipelineParams) -> Result<PreparedRig, PipelineError> {
+    params.validate()?;
+    face_prep::check_not_scrambled(&mesh.vertices, &mesh.triangles)?;
     let frame = InputFrame::find(mesh)?;
     let reduced =
         crate::copy::reduce::reduce(mesh, &frame, params.peel_rolled_in, &params.large_face)?;
@@ -41,6 +43,7 @@ pub fn prepare(mesh: &FaceMesh, params: &PipelineParams) -> Result<PreparedRig, 
         rig,
         peeled_vertices: reduced.peeled_vertices,
         simplify_path: reduced.simplify_path,
+        copy_fallback: reduced.copy_fallback,
         frame,
     })
 }
@@ -64,9 +67,7 @@ pub fn build_face_model(
     params: &PipelineParams,
     control: &Control,
 ) -> Result<FaceModel, PipelineError> {
-    if !(0.0..0.5).contains(&params.poisson) {
-        return Err(PipelineError::Poisson(params.poisson));
-    }
+    params.validate()?;
     let t0 = Instant::now();
     control.report(Stage::Prep, 0, 1);
     let PreparedRig {
@@ -75,6 +76,7 @@ pub fn build_face_model(
         rig,
         peeled_vertices,
         simplify_path,
+        copy_fallback,
         frame,
     } = prepare(mesh, params)?;
     if rig.muscles.is_empty() {
@@ -134,6 +136,7 @@ pub fn build_face_model(
         force_peak_control,
         simulated_triangles: simulated.triangles.len(),
         simplify_path,
+        copy_fallback,
         shell_elements: rig.shell.triangles.len(),
         dofs: 3 * rig.shell.triangles.len(),
         shell_self_intersections,
@@ -189,10 +192,9 @@ fn response_amplification(rig: &FaceRig, solved: &Solved) -> f64 {
         .fold(0.0, f64::max)
 }
 
-/// Identifier of a muscle: its standard id when it is one of the ten, else its name.
+/// Identifier of a muscle ([`face_prep::Muscle::id`]): its standard id, else its name.
 fn muscle_id(m: &face_prep::Muscle) -> String {
-    m.kind
-        .map_or_else(|| m.name.clone(), |k| k.id().to_string())
+    m.id().to_owned()
 }
 
 fn check_cancel(control: &Control) -> Result<(), PipelineError> {

@@ -202,3 +202,92 @@ fn glb_input_keeps_its_vertex_order_and_texcoords() {
         }
     }
 }
+
+/// What the face reader accepts, the exports read: for the bundled faces, the textured face and
+/// edits of it (lines moved before or after the faces, indices past the lists, non-finite
+/// numbers), either the reader refuses the text or the export layout and the pose writer both
+/// take it. The edits that make a corner refer to a later line are refused by the reader.
+#[test]
+fn reader_and_export_layout_accept_the_same_obj_texts() {
+    use facebem::export::{ExportLayout, obj};
+    let textured = textured_default_face();
+    let lines: Vec<&str> = textured.lines().collect();
+    let first = |p: &str| lines.iter().position(|l| l.starts_with(p)).unwrap();
+    let last = |p: &str| lines.iter().rposition(|l| l.starts_with(p)).unwrap();
+    let moved = |from: usize, to: usize| {
+        let mut l = lines.clone();
+        let x = l.remove(from);
+        l.insert(to.min(l.len()), x);
+        l.join("\n") + "\n"
+    };
+    let replaced = |at: usize, with: &str| {
+        let mut l = lines.clone();
+        l[at] = with;
+        l.join("\n") + "\n"
+    };
+    let (fv, lv, fvt, lvt, fvn, lvn, ff, lf) = (
+        first("v "),
+        last("v "),
+        first("vt "),
+        last("vt "),
+        first("vn "),
+        last("vn "),
+        first("f "),
+        last("f "),
+    );
+    // The `v`, `vt` and `vn` of the first face's first corner (1-based).
+    let corner: Vec<usize> = lines[ff]
+        .split_whitespace()
+        .nth(1)
+        .unwrap()
+        .split('/')
+        .map(|i| i.parse().unwrap())
+        .collect();
+    let refused = [
+        moved(fv + corner[0] - 1, lines.len()), // the first face's `v` after the faces
+        moved(fvt + corner[1] - 1, lines.len()), // its `vt` after the faces
+        moved(fvn + corner[2] - 1, lines.len()), // its `vn` after the faces
+        moved(lf, fv),                          // a face before every `v`
+        replaced(ff, "f 1/1/1 2/2/2 3/3/9999"),
+        replaced(fvt, "vt nan 0"),
+        replaced(fvn, "vn 0 inf 1"),
+        replaced(fv, "v 0 0 0 0"),
+        replaced(fv, "v 1 2 3 1e-320"),
+        replaced(fvt, "vt 0 3.5e38"),
+    ];
+    for (k, text) in refused.iter().enumerate() {
+        let read = face_prep::FaceMesh::from_obj_str(text);
+        assert!(
+            matches!(read, Err(face_prep::PrepError::ObjLine(_))),
+            "edit {k}: {read:?}"
+        );
+    }
+    let mut accepted: Vec<String> = support::FACES
+        .iter()
+        .map(|f| std::fs::read_to_string(support::asset(f)).unwrap())
+        .collect();
+    accepted.push(textured.clone());
+    accepted.push(moved(fvt, fv)); // a `vt` before the `v` lines
+    accepted.push(moved(lv, fvn)); // the last `v` among the `vn` lines, still before the faces
+    accepted.push(moved(ff, lines.len())); // the first face last
+    // The first face with relative indices (counted back from the face).
+    let (nv, nvt, nvn) = (lv - fv + 1, lvt - fvt + 1, lvn - fvn + 1);
+    let relative: Vec<String> = lines[ff]
+        .split_whitespace()
+        .skip(1)
+        .map(|c| {
+            let i: Vec<i64> = c.split('/').map(|i| i.parse().unwrap()).collect();
+            let back = |i: i64, n: usize| i - n as i64 - 1;
+            format!("{}/{}/{}", back(i[0], nv), back(i[1], nvt), back(i[2], nvn))
+        })
+        .collect();
+    accepted.push(replaced(ff, &format!("f {}", relative.join(" "))));
+    for (k, text) in accepted.iter().enumerate() {
+        let mesh = face_prep::FaceMesh::from_obj_str(text)
+            .unwrap_or_else(|e| panic!("text {k} is refused: {e}"));
+        let layout = ExportLayout::from_obj(text, &mesh.input_to_vertex);
+        assert!(layout.is_ok(), "text {k}: {layout:?}");
+        let pose = obj::pose_from_template(text, &mesh.input_to_vertex, &mesh.vertices);
+        assert!(pose.is_ok(), "text {k}: {pose:?}");
+    }
+}

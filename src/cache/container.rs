@@ -38,8 +38,9 @@ pub const MAGIC: [u8; 8] = *b"FACEBEM\x1a";
 /// relaxed beyond the lips and lids; 22: each corrugator relaxed in its `browDown*`
 /// combination; 23: the mid and lower face relaxed for the lengthened direction too; 25: `LargeFaceParams::method`, remeshed copies; 26:
 /// `PrecomputeReport::force_peak_ratio`; 27: the modiolus muscles pin the modiolus,
-/// [`face_prep::modiolus`]; 28: the zygomaticus's origin further out, the pins along the skin).
-pub const FORMAT_VERSION: u32 = 28;
+/// [`face_prep::modiolus`]; 28: the zygomaticus's origin further out, the pins along the skin;
+/// 29: the report says why a large face's edge-collapse copy was replaced by a remeshed one).
+pub const FORMAT_VERSION: u32 = 29;
 /// Size of the fixed header in bytes.
 pub const HEADER_LEN: usize = 8 + 4 + 32 + 32 + 8 + 32;
 

@@ -62,6 +62,15 @@ pub enum CacheError {
         /// What is wrong.
         reason: String,
     },
+    /// The rig would be larger than a rig file may be ([`MAX_RIG_BYTES`]), so it could not be
+    /// read back.
+    #[error("{path}: the rig would be {} MiB, over the {} MiB a rig file may hold; simplify the face mesh first", bytes >> 20, MAX_RIG_BYTES >> 20)]
+    TooLarge {
+        /// The cache file.
+        path: PathBuf,
+        /// Its size (estimated before computing, or encoded).
+        bytes: u64,
+    },
     /// The cache was computed for another face mesh.
     #[error("{path} was computed for another face mesh (mesh hash differs)")]
     OtherMesh {
@@ -130,7 +139,41 @@ pub fn save(path: &Path, model: &FaceModel) -> Result<(), CacheError> {
         path: path.to_path_buf(),
         source,
     })?;
+    // What is written can always be read back (issue 36).
+    if bytes.len() as u64 > MAX_RIG_BYTES {
+        return Err(CacheError::TooLarge {
+            path: path.to_path_buf(),
+            bytes: bytes.len() as u64,
+        });
+    }
     write_atomic(path, &bytes)?;
+    Ok(())
+}
+
+/// A lower bound of the size of `mesh`'s rig file, known before computing it: the neutral
+/// positions, the triangles and one displacement per vertex per muscle
+/// ([`face_prep::MuscleKind::ALL`]), 8-byte coordinates.
+///
+/// ```
+/// let mesh = facebem::input::default_face().unwrap();
+/// let bytes = facebem::cache::rig_size_lower_bound(&mesh);
+/// assert!(bytes > 468 * 37 * 24 && bytes < facebem::cache::MAX_RIG_BYTES);
+/// ```
+pub fn rig_size_lower_bound(mesh: &FaceMesh) -> u64 {
+    let per_vertex = 24 * (1 + face_prep::MuscleKind::ALL.len() as u64);
+    mesh.vertices.len() as u64 * per_vertex + 12 * mesh.triangles.len() as u64
+}
+
+/// Refuses, before computing, a face whose rig file would exceed [`MAX_RIG_BYTES`]
+/// ([`rig_size_lower_bound`]).
+pub fn check_rig_size(path: &Path, mesh: &FaceMesh) -> Result<(), CacheError> {
+    let bytes = rig_size_lower_bound(mesh);
+    if bytes > MAX_RIG_BYTES {
+        return Err(CacheError::TooLarge {
+            path: path.to_path_buf(),
+            bytes,
+        });
+    }
     Ok(())
 }
 

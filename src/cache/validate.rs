@@ -6,6 +6,7 @@ use face_prep::error::sig6;
 use face_prep::limits::MAX_COORDINATE;
 use glam::DVec3;
 
+use crate::export::layout::ExportLayout;
 use crate::model::{FaceModel, SimplifiedFace};
 
 fn check_points(what: &str, points: &[DVec3]) -> Result<(), String> {
@@ -59,8 +60,9 @@ fn check_fields(
 }
 
 /// Checks that every index of `model` is in range, every number finite and within
-/// [`MAX_COORDINATE`], and every per-vertex, per-element and per-muscle field as long as what
-/// it describes. Returns what is wrong.
+/// [`MAX_COORDINATE`], every per-vertex, per-element and per-muscle field as long as what it
+/// describes, the muscle ids unique and the kept OBJ text readable by the exports (what is
+/// accepted always exports). Returns what is wrong.
 pub fn validate_model(model: &FaceModel) -> Result<(), String> {
     check_mesh(model)?;
     let muscles = check_basis(model)?;
@@ -81,19 +83,64 @@ pub fn validate_model(model: &FaceModel) -> Result<(), String> {
         check_simplified(s, model.mesh.vertices.len())?;
     }
     if let Some(text) = &model.obj_source {
-        let v_lines = text
-            .lines()
-            .filter(|l| l.trim_start().starts_with("v ") || l.trim_start().starts_with("v\t"))
-            .count();
-        check_len(
-            "OBJ source v lines",
-            v_lines,
-            model.mesh.input_to_vertex.len(),
-        )?;
+        check_obj_source(text, &model.mesh.input_to_vertex)?;
     }
+    check_numbers(model)?;
     let nu = model.params.poisson;
     if !(0.0..0.5).contains(&nu) {
         return Err(format!("Poisson ratio {} is outside [0, 0.5)", sig6(nu)));
+    }
+    Ok(())
+}
+
+/// The user's OBJ text kept for exports: read by the exports' own rules (those of the face
+/// reader, [`face_prep::obj_text`]: finite numbers, faces referring to lines above them), with
+/// one `v` line per input position, every position within [`MAX_COORDINATE`].
+fn check_obj_source(text: &str, input_to_vertex: &[Option<u32>]) -> Result<(), String> {
+    let layout =
+        ExportLayout::from_obj(text, input_to_vertex).map_err(|e| format!("its OBJ text: {e}"))?;
+    check_points("OBJ source position", &layout.positions)
+}
+
+/// The numbers beside the geometry: the length unit, the feature boxes, the rig parameters,
+/// and unique muscle ids (morph targets and sliders are named by them).
+fn check_numbers(model: &FaceModel) -> Result<(), String> {
+    // Up to 1e12 m per unit, positions within MAX_COORDINATE stay far inside glTF's f32.
+    let metres = model.rig.unit.metres();
+    if !(metres > 0.0 && metres <= 1e12) {
+        return Err(format!(
+            "length unit of {} m per unit is not in (0, 1e12]",
+            sig6(metres)
+        ));
+    }
+    let b = &model.rig.boxes;
+    for (name, bx) in [
+        ("face", &b.face),
+        ("left eye", &b.eye_l),
+        ("right eye", &b.eye_r),
+        ("mouth", &b.mouth),
+        ("nose", &b.nose),
+        ("skull", &b.skull),
+    ] {
+        if !(bx.min.is_finite() && bx.max.is_finite()) {
+            return Err(format!("feature box {name} is not finite"));
+        }
+    }
+    let p = &model.rig.params;
+    for (name, x) in [
+        ("offset", p.offset),
+        ("thickness", p.thickness),
+        ("offset clamp", p.offset_clamp),
+        ("ray spacing", p.ray_spacing),
+        ("taper", p.taper),
+    ] {
+        if !x.is_finite() {
+            return Err(format!("rig parameter {name} = {} is not finite", sig6(x)));
+        }
+    }
+    let mut ids = std::collections::HashSet::new();
+    if let Some(id) = model.basis.muscle_ids.iter().find(|id| !ids.insert(*id)) {
+        return Err(format!("two muscles are named {id:?}"));
     }
     Ok(())
 }

@@ -89,6 +89,58 @@ impl CopyMethod {
     }
 }
 
+impl LargeFaceParams {
+    /// Documented range of [`LargeFaceParams::max_triangles`] and
+    /// [`LargeFaceParams::target_triangles`]. At 6000 front triangles the shell has about
+    /// 13 000 elements and the dense solve needs about 12 GB and tens of minutes on 2 cores;
+    /// below 100 triangles a face has no room for its features.
+    pub const TRIANGLES_RANGE: std::ops::RangeInclusive<usize> = 100..=6000;
+
+    /// Checks every field against its documented range: both triangle counts in
+    /// [`LargeFaceParams::TRIANGLES_RANGE`] (a target at or above a face's own size leaves it
+    /// whole), `max_error`
+    /// finite and positive, `normal_weight` in [0, 100], `border_spacing` in [0, 10].
+    /// Returns the first field outside as `(name, value, range)`.
+    ///
+    /// ```
+    /// use facebem::copy::LargeFaceParams;
+    /// assert!(LargeFaceParams::default().validate().is_ok());
+    /// let p = LargeFaceParams { target_triangles: 1_000_000, ..LargeFaceParams::default() };
+    /// let (name, _, range) = p.validate().unwrap_err();
+    /// assert_eq!((name, range.as_str()), ("target_triangles", "[100, 6000]"));
+    /// ```
+    pub fn validate(&self) -> Result<(), (&'static str, String, String)> {
+        let range = Self::TRIANGLES_RANGE;
+        let bounds = format!("[{}, {}]", range.start(), range.end());
+        if !range.contains(&self.max_triangles) {
+            return Err(("max_triangles", self.max_triangles.to_string(), bounds));
+        }
+        if !range.contains(&self.target_triangles) {
+            return Err((
+                "target_triangles",
+                self.target_triangles.to_string(),
+                bounds,
+            ));
+        }
+        if !(self.max_error.is_finite() && self.max_error > 0.0) {
+            return Err((
+                "max_error",
+                format!("{:?}", self.max_error),
+                "(0, inf)".into(),
+            ));
+        }
+        if !(0.0..=100.0).contains(&self.normal_weight) {
+            let value = format!("{:?}", self.normal_weight);
+            return Err(("normal_weight", value, "[0, 100]".into()));
+        }
+        if !(0.0..=10.0).contains(&self.border_spacing) {
+            let value = format!("{:?}", self.border_spacing);
+            return Err(("border_spacing", value, "[0, 10]".into()));
+        }
+        Ok(())
+    }
+}
+
 impl Default for LargeFaceParams {
     /// 1500 front triangles (the thesis' face size): a shell of about 3.2k elements, 9.6k DOFs,
     /// a 0.75 GB matrix and a precompute of well under a minute on 2 cores.
@@ -264,6 +316,11 @@ pub fn simplify_anchored(
                 count: vertices.len(),
             });
         }
+    }
+    // Nothing to remove. meshoptimizer asserts (an abort, not an error) on a target above the
+    // mesh's own size: regression `a_target_above_the_face_size_does_not_abort` (issue 36).
+    if target_triangles >= triangles.len() {
+        return Ok(Simplified::whole(vertices, triangles));
     }
     let positions: Vec<[f32; 3]> = vertices.iter().map(|v| v.as_vec3().to_array()).collect();
     let bytes: Vec<u8> = positions

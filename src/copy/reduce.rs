@@ -16,6 +16,8 @@ pub(crate) struct Reduced {
     pub peeled_vertices: Vec<u32>,
     /// How a large face was simplified; `None` when it was not.
     pub simplify_path: Option<SimplifyPath>,
+    /// Why the edge-collapse copy was replaced by a remeshed one ([`copy_large_face`]).
+    pub copy_fallback: Option<String>,
 }
 
 /// Peels the rolled-in parts off `mesh` (when `peel_rolled_in`) and simplifies what is left
@@ -46,14 +48,12 @@ pub(crate) fn reduce(
     };
     let base = peeled.as_ref().unwrap_or(&whole);
     let mut simplify_path = None;
+    let mut copy_fallback = None;
     let simplified = if base.triangles.len() > params.max_triangles {
         let keep = kept_mouth_corners(mesh, frame, base);
-        let copy = match params.method {
-            CopyMethod::Collapse => super::simplify::simplify_face_keeping,
-            CopyMethod::Remesh => super::remesh_face::remesh_face_keeping,
-        };
-        let (s, path) = copy(&base.vertices, &base.triangles, params, &keep)?;
+        let (s, path, fallback) = copy_large_face(base, params, &keep)?;
         simplify_path = Some(path);
+        copy_fallback = fallback;
         Some(Simplified {
             original_vertex: s
                 .original_vertex
@@ -69,7 +69,40 @@ pub(crate) fn reduce(
         simplified,
         peeled_vertices,
         simplify_path,
+        copy_fallback,
     })
+}
+
+/// The simulated copy of a large face by `params.method`. An edge-collapse copy that is not a
+/// valid surface (meshoptimizer collapses exactly collinear vertices, as in a midpoint-
+/// subdivided face, into zero-area triangles; issue 36, regression
+/// `a_midpoint_subdivided_face_is_simulated_on_a_remeshed_copy`) is replaced by the remeshed
+/// copy, whose vertices are new points of the surface; the reason is returned third.
+fn copy_large_face(
+    base: &Simplified,
+    params: &LargeFaceParams,
+    keep: &[u32],
+) -> Result<(Simplified, SimplifyPath, Option<String>), SimplifyError> {
+    let remesh = super::remesh_face::remesh_face_keeping;
+    if params.method == CopyMethod::Remesh {
+        let (s, path) = remesh(&base.vertices, &base.triangles, params, keep)?;
+        return Ok((s, path, None));
+    }
+    let (s, path) =
+        super::simplify::simplify_face_keeping(&base.vertices, &base.triangles, params, keep)?;
+    match face_prep::topology::validate(&s.vertices, &s.triangles) {
+        Ok(_) => Ok((s, path, None)),
+        Err(e) => {
+            let (s, path) = remesh(&base.vertices, &base.triangles, params, keep)?;
+            Ok((
+                s,
+                path,
+                Some(format!(
+                    "the edge-collapse copy was not a valid surface ({e})"
+                )),
+            ))
+        }
+    }
 }
 
 /// The input mouth loop's corners (its extreme vertices in the canonical ±x, the landmarks

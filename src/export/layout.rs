@@ -20,20 +20,19 @@
 
 use std::collections::HashMap;
 
+use face_prep::ObjLineError;
+use face_prep::obj_text::{self, ObjCorner as Corner};
 use glam::DVec3;
 
 /// Errors building an [`ExportLayout`] from an OBJ text.
 #[derive(Debug, thiserror::Error, PartialEq)]
 #[non_exhaustive]
 pub enum LayoutError {
-    /// A face corner refers to a `v`, `vt` or `vn` that does not exist or is not a number.
-    #[error("OBJ line {line}: bad face corner {corner:?}")]
-    BadCorner {
-        /// 1-based line number.
-        line: usize,
-        /// The corner as written.
-        corner: String,
-    },
+    /// A line breaks the rules the face reader holds OBJ text to ([`face_prep::obj_text`]):
+    /// a face corner refers to a `v`, `vt` or `vn` that does not come before it, a number is
+    /// not finite.
+    #[error(transparent)]
+    Obj(#[from] ObjLineError),
     /// The OBJ has another number of `v` lines than the face mesh was loaded from.
     #[error("the OBJ has {found} `v` lines but the face mesh was loaded from {expected}")]
     VertexCount {
@@ -105,61 +104,17 @@ impl ExportLayout {
     /// assert_eq!(layout.uvs.unwrap()[4], [0.5, 0.0]); // (u, 1 - v)
     /// ```
     pub fn from_obj(text: &str, input_to_vertex: &[Option<u32>]) -> Result<Self, LayoutError> {
-        let mut positions = Vec::new();
-        let mut tex = Vec::new();
-        let mut nor = Vec::new();
-        // Corners as (v, vt, vn) indices, 0-based, per face.
-        let mut faces: Vec<(usize, Vec<Corner>)> = Vec::new();
-        for (line_index, line) in text.lines().enumerate() {
-            let mut words = line.split_whitespace();
-            let nums = |w: std::str::SplitWhitespace| -> Vec<f64> {
-                w.map_while(|t| t.parse::<f64>().ok()).collect()
-            };
-            match words.next() {
-                Some("v") => {
-                    let n = nums(words);
-                    if n.len() < 3 {
-                        continue;
-                    }
-                    let mut p = DVec3::new(n[0], n[1], n[2]);
-                    if n.len() == 4 && n[3] != 0.0 {
-                        p /= n[3];
-                    }
-                    positions.push(p);
-                }
-                Some("vt") => {
-                    let n = nums(words);
-                    tex.push([
-                        n.first().copied().unwrap_or(0.0),
-                        n.get(1).copied().unwrap_or(0.0),
-                    ]);
-                }
-                Some("vn") => {
-                    let n = nums(words);
-                    let v = DVec3::new(
-                        n.first().copied().unwrap_or(0.0),
-                        n.get(1).copied().unwrap_or(0.0),
-                        n.get(2).copied().unwrap_or(0.0),
-                    );
-                    nor.push(v.try_normalize());
-                }
-                Some("f") => {
-                    let counts = [positions.len(), tex.len(), nor.len()];
-                    let corners = words
-                        .map(|w| {
-                            parse_corner(w, counts).ok_or_else(|| LayoutError::BadCorner {
-                                line: line_index + 1,
-                                corner: w.to_string(),
-                            })
-                        })
-                        .collect::<Result<Vec<_>, _>>()?;
-                    if corners.len() >= 3 {
-                        faces.push((line_index + 1, corners));
-                    }
-                }
-                _ => {}
-            }
-        }
+        // The reader's own rules: what it accepted parses here the same way.
+        let obj = obj_text::parse(text)?;
+        let positions = obj.positions;
+        let tex = obj.texcoords;
+        let nor: Vec<Option<DVec3>> = obj.normals.iter().map(|n| n.try_normalize()).collect();
+        let faces: Vec<(usize, Vec<Corner>)> = obj
+            .faces
+            .into_iter()
+            .filter(|f| f.corners.len() >= 3)
+            .map(|f| (f.line, f.corners))
+            .collect();
         if positions.len() != input_to_vertex.len() {
             return Err(LayoutError::VertexCount {
                 expected: input_to_vertex.len(),
@@ -290,37 +245,6 @@ pub fn obj_text_of_gltf(data: &face_prep::GltfFaceData) -> String {
     out
 }
 
-/// One face corner: 0-based `v`, `vt`, `vn` indices.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-struct Corner {
-    v: usize,
-    vt: Option<usize>,
-    vn: Option<usize>,
-}
-
-/// Parses `v`, `v/vt`, `v//vn` or `v/vt/vn` (1-based, or negative = relative to the end).
-fn parse_corner(word: &str, counts: [usize; 3]) -> Option<Corner> {
-    let mut parts = word.split('/');
-    let resolve = |s: Option<&str>, count: usize| -> Option<Option<usize>> {
-        match s {
-            None | Some("") => Some(None),
-            Some(s) => {
-                let i: i64 = s.parse().ok()?;
-                let idx = if i > 0 {
-                    usize::try_from(i - 1).ok()?
-                } else {
-                    count.checked_sub(usize::try_from(-i).ok()?)?
-                };
-                (idx < count).then_some(Some(idx))
-            }
-        }
-    };
-    let v = resolve(parts.next(), counts[0])??;
-    let vt = resolve(parts.next(), counts[1])?;
-    let vn = resolve(parts.next(), counts[2])?;
-    Some(Corner { v, vt, vn })
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -347,7 +271,10 @@ mod tests {
         let map = [Some(0), Some(1), Some(2)];
         assert!(matches!(
             ExportLayout::from_obj(obj, &map),
-            Err(LayoutError::BadCorner { line: 4, .. })
+            Err(LayoutError::Obj(ObjLineError::UndefinedCorner {
+                line: 4,
+                ..
+            }))
         ));
         assert!(matches!(
             ExportLayout::from_obj("v 0 0 0\n", &map),

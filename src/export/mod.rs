@@ -62,7 +62,7 @@ impl crate::FaceModel {
         let posed = self.basis.pose(sliders)?;
         Ok(match &self.obj_source {
             Some(text) => obj::pose_from_template(text, &self.mesh.input_to_vertex, &posed)?,
-            None => obj::plain_obj(&posed, &self.basis.triangles),
+            None => obj::plain_obj(&posed, &self.basis.triangles)?,
         })
     }
 

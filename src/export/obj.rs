@@ -4,7 +4,11 @@
 //! only the `v` lines' coordinates replaced: vertex order, `vt`/`vn` lines, faces, groups,
 //! materials and comments stay exactly as the user wrote them. Otherwise a plain OBJ is written
 //! from the welded vertices and triangles.
+//!
+//! Neither writer emits a NaN or an infinity: a non-finite posed position, or a non-finite
+//! number in a template's `v`, `vt` or `vn` line, is an [`ObjExportError::NonFinite`].
 
+use face_prep::obj_text::{is_vertex_line, non_finite_word};
 use glam::DVec3;
 
 /// Errors from OBJ export.
@@ -28,6 +32,15 @@ pub enum ObjExportError {
         vertex: usize,
         /// Number of posed positions.
         count: usize,
+    },
+    /// A number to write is NaN or infinite (a posed position, or a number of the template's
+    /// `v`, `vt` or `vn` line `line`).
+    #[error("line {line} of the OBJ would hold a number that is not finite ({what})")]
+    NonFinite {
+        /// 1-based line number in the output.
+        line: usize,
+        /// What is not finite (`posed vertex 12`, `"nan"`).
+        what: String,
     },
     /// A `v` line has fewer than three coordinates.
     #[error("`v` line {line} has fewer than three coordinates")]
@@ -57,10 +70,7 @@ pub fn pose_from_template(
     input_to_vertex: &[Option<u32>],
     positions: &[DVec3],
 ) -> Result<String, ObjExportError> {
-    let found = template
-        .lines()
-        .filter(|l| is_vertex_line(l.trim_start()))
-        .count();
+    let found = template.lines().filter(|l| is_vertex_line(l)).count();
     if found != input_to_vertex.len() {
         return Err(ObjExportError::VertexLineCount {
             expected: input_to_vertex.len(),
@@ -73,6 +83,14 @@ pub fn pose_from_template(
         let line = raw.trim_end_matches(['\n', '\r']);
         let ending = &raw[line.len()..];
         let trimmed = line.trim_start();
+        if matches!(trimmed.split_whitespace().next(), Some("v" | "vt" | "vn"))
+            && let Some(word) = non_finite_word(trimmed)
+        {
+            return Err(ObjExportError::NonFinite {
+                line: line_index + 1,
+                what: format!("{word:?}"),
+            });
+        }
         if !is_vertex_line(trimmed) {
             out.push_str(raw);
             continue;
@@ -97,6 +115,12 @@ pub fn pose_from_template(
                 line: line_index + 1,
             });
         }
+        if !p.is_finite() {
+            return Err(ObjExportError::NonFinite {
+                line: line_index + 1,
+                what: format!("posed vertex {vertex}"),
+            });
+        }
         out.push_str(&format!("v {} {} {}", p.x, p.y, p.z));
         for extra in &tokens[4..] {
             out.push(' ');
@@ -107,27 +131,31 @@ pub fn pose_from_template(
     Ok(out)
 }
 
-/// Writes a plain OBJ (`v` and `f` lines, 1-based) of `positions` and `triangles`.
+/// Writes a plain OBJ (`v` and `f` lines, 1-based) of `positions` and `triangles`; a
+/// non-finite position is an error.
 ///
 /// ```
 /// use facebem::export::obj::plain_obj;
 /// use glam::DVec3;
-/// let s = plain_obj(&[DVec3::ZERO, DVec3::X, DVec3::Y], &[[0, 1, 2]]);
+/// let s = plain_obj(&[DVec3::ZERO, DVec3::X, DVec3::Y], &[[0, 1, 2]]).unwrap();
 /// assert!(s.ends_with("v 0 1 0\nf 1 2 3\n"));
+/// assert!(plain_obj(&[DVec3::NAN], &[]).is_err());
 /// ```
-pub fn plain_obj(positions: &[DVec3], triangles: &[[u32; 3]]) -> String {
+pub fn plain_obj(positions: &[DVec3], triangles: &[[u32; 3]]) -> Result<String, ObjExportError> {
     let mut out = String::from("# written by facebem\n");
-    for p in positions {
+    for (vertex, p) in positions.iter().enumerate() {
+        if !p.is_finite() {
+            return Err(ObjExportError::NonFinite {
+                line: vertex + 2,
+                what: format!("posed vertex {vertex}"),
+            });
+        }
         out.push_str(&format!("v {} {} {}\n", p.x, p.y, p.z));
     }
     for t in triangles {
         out.push_str(&format!("f {} {} {}\n", t[0] + 1, t[1] + 1, t[2] + 1));
     }
-    out
-}
-
-fn is_vertex_line(trimmed: &str) -> bool {
-    trimmed.starts_with("v ") || trimmed.starts_with("v\t")
+    Ok(out)
 }
 
 #[cfg(test)]
@@ -165,9 +193,40 @@ mod tests {
     }
 
     #[test]
+    fn pose_writer_refuses_to_write_non_finite_numbers() {
+        let obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+        let map = [Some(0), Some(1), Some(2)];
+        let posed = [DVec3::ZERO, DVec3::new(f64::INFINITY, 0.0, 0.0), DVec3::Y];
+        let err = pose_from_template(obj, &map, &posed).unwrap_err();
+        assert!(
+            matches!(&err, ObjExportError::NonFinite { line: 2, what } if what == "posed vertex 1"),
+            "{err}"
+        );
+        let good = [DVec3::ZERO, DVec3::X, DVec3::Y];
+        for bad in ["vt nan 0", "vn inf 0 1", "v 0 0 0 inf", "v 0 0 0 1 NaN 1"] {
+            let template = format!("{obj}{bad}\n");
+            let map = if bad.starts_with("v ") {
+                &[Some(0), Some(1), Some(2), None][..]
+            } else {
+                &map[..]
+            };
+            let err = pose_from_template(&template, map, &good).unwrap_err();
+            assert!(
+                matches!(err, ObjExportError::NonFinite { line: 5, .. }),
+                "{bad}: {err}"
+            );
+        }
+        let err = plain_obj(&[DVec3::ZERO, DVec3::new(0.0, f64::NAN, 0.0)], &[]).unwrap_err();
+        assert!(
+            matches!(err, ObjExportError::NonFinite { line: 3, .. }),
+            "{err}"
+        );
+    }
+
+    #[test]
     fn positions_round_trip_exactly_through_text() {
         let p = DVec3::new(0.1 + 0.2, -1.0 / 3.0, 1e-17);
-        let out = plain_obj(&[p], &[]);
+        let out = plain_obj(&[p], &[]).unwrap();
         let line = out.lines().nth(1).unwrap();
         let xyz: Vec<f64> = line[2..].split(' ').map(|t| t.parse().unwrap()).collect();
         assert_eq!(DVec3::new(xyz[0], xyz[1], xyz[2]), p);

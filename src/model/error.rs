@@ -26,9 +26,9 @@ pub enum PipelineError {
     /// The simulated copy's responses could not be carried to the input mesh.
     #[error("transfer: {0}")]
     Transfer(#[from] TransferError),
-    /// The Poisson ratio is not in [0, 0.5).
-    #[error("Poisson ratio {0} is outside [0, 0.5)")]
-    Poisson(f64),
+    /// A parameter is outside its documented range ([`crate::PipelineParams::validate`]).
+    #[error("parameter {0}")]
+    Param(#[from] crate::model::params::ParamError),
     /// The rig has no muscles.
     #[error("the rig has no muscles")]
     NoMuscles,

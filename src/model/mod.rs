@@ -19,7 +19,7 @@ pub use crate::transfer::SimplifiedFace;
 
 pub use basis::{MuscleBasis, PoseError};
 pub use error::PipelineError;
-pub use params::PipelineParams;
+pub use params::{ParamError, PipelineParams};
 pub use report::{PrecomputeReport, SUSPICIOUS_AMPLIFICATION, SUSPICIOUS_FORCE_PEAK};
 pub use trust::{
     MAX_JAW_MOTION_MM, MAX_MOTION_OUTSIDE_JAW_MM, MAX_MOTION_PER_SHORTENING, distrust,
@@ -93,6 +93,8 @@ pub struct PreparedRig {
     pub peeled_vertices: Vec<u32>,
     /// How a large face was simplified; `None` when it was not.
     pub simplify_path: Option<crate::copy::simplify::SimplifyPath>,
+    /// Why the edge-collapse copy was replaced by a remeshed one; `None` when it was not.
+    pub copy_fallback: Option<String>,
     /// The input mesh's loops and canonical frame, found once ([`crate::frame`]).
     pub frame: InputFrame,
 }

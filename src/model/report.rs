@@ -12,6 +12,9 @@ pub struct PrecomputeReport {
     pub simulated_triangles: usize,
     /// How a large face was simplified ([`crate::copy::simplify`](mod@crate::copy::simplify)); `None` when it was not.
     pub simplify_path: Option<crate::copy::simplify::SimplifyPath>,
+    /// Why the edge-collapse copy of a large face was replaced by a remeshed one (e.g. it had
+    /// zero-area triangles); `None` when it was not. A warning.
+    pub copy_fallback: Option<String>,
     /// Boundary elements of the closed shell.
     pub shell_elements: usize,
     /// Unknowns of the dense system (3 per element).
@@ -87,6 +90,9 @@ impl PrecomputeReport {
     /// ```
     pub fn warnings(&self) -> Vec<String> {
         let mut out = Vec::new();
+        if let Some(reason) = &self.copy_fallback {
+            out.push(format!("{reason}; simulated on a remeshed copy instead"));
+        }
         if self.shell_self_intersections > 0 {
             out.push(format!(
                 "{} pairs of shell elements intersect (does the face cross itself, e.g. at the \

@@ -93,3 +93,23 @@ with open('obj_head_cut_at_neck.obj', 'w') as f:
         f.write("v %.6f %.6f %.6f\n" % verts[v])
     for t in faces:
         f.write("f %d %d %d\n" % tuple(remap[v] for v in t))
+# Non-finite numbers, zero w and forward references are refused when the file is read (issue:
+# hostile input, parts 4 and 6), so nothing accepted fails later in an export.
+def tri_doc_with(semantic, values, fmt, kind):
+    d = tri_doc()
+    extra = struct.pack(fmt, *values)
+    buf = base64.b64decode(d["buffers"][0]["uri"].split(",")[1]) + extra
+    d["buffers"][0] = {"byteLength": len(buf), "uri": "data:application/octet-stream;base64," + base64.b64encode(buf).decode()}
+    d["bufferViews"].append({"buffer": 0, "byteOffset": 48, "byteLength": len(extra)})
+    d["accessors"].append({"bufferView": 2, "componentType": 5126, "count": 3, "type": kind})
+    d["meshes"][0]["primitives"][0]["attributes"][semantic] = 2
+    return d
+nan, inf = float('nan'), float('inf')
+open('gltf_texcoord_nan.gltf', 'w').write(json.dumps(tri_doc_with("TEXCOORD_0", [0, 0, nan, 0, 0, 1], '<6f', "VEC2")))
+open('gltf_normal_infinite.gltf', 'w').write(json.dumps(tri_doc_with("NORMAL", [0, 0, 1, 0, 0, 1, inf, 0, 1], '<9f', "VEC3")))
+open('obj_texcoord_nan.obj', 'w').write("v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt nan nan\nf 1/1 2/2 3/1\n")
+open('obj_normal_infinite.obj', 'w').write("v 0 0 0\nv 1 0 0\nv 0 1 0\nvn inf 0 1\nf 1//1 2//1 3//1\n")
+open('obj_w_infinite.obj', 'w').write("v 0 0 0\nv 1 0 0 inf\nv 0 1 0\nf 1 2 3\n")
+open('obj_w_zero.obj', 'w').write("v 0 0 0\nv 1 0 0 0\nv 0 1 0\nf 1 2 3\n")
+open('obj_vertex_after_its_face.obj', 'w').write("v 0 0 0\nv 1 0 0\nf 1 2 3\nv 0 1 0\n")
+open('muscles_duplicate_names.muscles', 'w').write("[Name]\nFrontalis L\n[Size]\n1\n[Data]\n0\n\n[Name]\nfrontalis_l\n[Size]\n1\n[Data]\n1\n")

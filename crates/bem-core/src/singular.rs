@@ -38,6 +38,20 @@ pub fn g_singular(corners: [DVec3; 3], p: DVec3, material: &Material) -> Option<
     if (p - corners[0]).dot(nrm).abs() > 1e-9 * scale {
         return None;
     }
+    g_singular_in_plane(corners, p, nrm, material)
+}
+
+/// [`g_singular`] for a load point known to lie in the triangle's plane (unit normal `nrm`),
+/// such as its centroid: no in-plane test. The in-plane test's tolerance is relative to the
+/// triangle's size, and the normal of a sliver (height/edge 1e-7) is only accurate to about
+/// 1e-9 of an edge, so a centroid would fail it (issue 36, regression
+/// `sliver_element_has_a_diagonal_block`).
+fn g_singular_in_plane(
+    corners: [DVec3; 3],
+    p: DVec3,
+    nrm: DVec3,
+    material: &Material,
+) -> Option<Block> {
     let mut scalar = 0.0; // ∫ 1/r
     let mut tensor = [[0.0f64; 3]; 3]; // ∫ r̂_i r̂_j / r
     for k in 0..3 {
@@ -99,5 +113,10 @@ pub fn g_diagonal(mesh: &SurfaceMesh, e: usize, material: &Material) -> Option<B
     let c = mesh.corners(e);
     let local = c.map(|v| v - c[0]);
     let centroid = (local[0] + local[1] + local[2]) / 3.0;
-    g_singular(local, centroid, material)
+    let normal = (local[1] - local[0]).cross(local[2] - local[0]);
+    let twice_area = normal.length();
+    if twice_area.is_nan() || twice_area <= 0.0 {
+        return None;
+    }
+    g_singular_in_plane(local, centroid, normal / twice_area, material)
 }

@@ -293,3 +293,40 @@ fn traction_kernel_integrates_to_minus_identity_inside_and_zero_outside() {
         assert!(worst < 1e-6, "P = {p}: {worst:e}");
     }
 }
+
+/// Regression (issue 36): a face with sliver triangles (height/edge 1e-5 to 1e-7) passed
+/// validation and then failed the solve with "analytic diagonal G block: centroid not inside
+/// its (validated) element": the in-plane test's tolerance is relative to the triangle's size
+/// and a sliver's computed normal is only accurate to about 1e-9 of an edge. The diagonal block
+/// of a tilted sliver must exist and equal, up to the rotation, that of the same sliver lying
+/// in the x-y plane (where the normal is exact): trace and Frobenius norm are invariant.
+#[test]
+fn sliver_element_has_a_diagonal_block() {
+    let m = Material::new(0.45, 1.0).expect("material");
+    for height in [1e-5, 1e-6, 1e-7, 1e-8] {
+        let flat = [[0.0, 0.0], [1.0, 0.0], [0.37, height]];
+        let c = tilted(flat);
+        // A closed tetrahedron whose first face is the sliver, apex behind it.
+        let normal = (c[1] - c[0]).cross(c[2] - c[0]).normalize();
+        let apex = (c[0] + c[1] + c[2]) / 3.0 - 0.5 * normal;
+        let triangles = vec![[0, 1, 2], [0, 3, 1], [1, 3, 2], [2, 3, 0]];
+        let mesh = SurfaceMesh::new(vec![c[0], c[1], c[2], apex], triangles)
+            .expect("a valid tetrahedron with a sliver face");
+        let g = bem_core::singular::g_diagonal(&mesh, 0, &m)
+            .unwrap_or_else(|| panic!("height {height:e}: no diagonal block"));
+        let in_plane = flat.map(|[x, y]| DVec3::new(x, y, 0.0));
+        let centroid = (in_plane[0] + in_plane[1] + in_plane[2]) / 3.0;
+        let reference = g_singular(in_plane, centroid, &m).expect("flat sliver");
+        let trace = |b: &Block| b[0][0] + b[1][1] + b[2][2];
+        let trace_rel = (trace(&g) - trace(&reference)).abs() / trace(&reference).abs();
+        let norm_rel = (frobenius(&g) - frobenius(&reference)).abs() / frobenius(&reference);
+        assert!(
+            g.iter().flatten().all(|v| v.is_finite()),
+            "height {height:e}: {g:?}"
+        );
+        assert!(
+            trace_rel < 1e-8 && norm_rel < 1e-8,
+            "height {height:e}: trace differs by {trace_rel:e}, norm by {norm_rel:e}"
+        );
+    }
+}

@@ -16,13 +16,14 @@ use facebem::expressions::{self, NameSet, NameSets, presets};
 pub(crate) struct Cli {
     #[command(subcommand)]
     pub(crate) command: Command,
-    /// Largest input file read, in MiB (face meshes and muscle files; rigs up to 1024).
+    /// Largest input file read, in MiB (face meshes and muscle files; rigs up to 1024), in
+    /// [0, 4096].
     #[arg(long, global = true, default_value_t = face_prep::InputLimits::default().max_file_bytes >> 20)]
     pub(crate) max_input_mb: u64,
-    /// Most positions and triangles a face mesh may have.
+    /// Most positions and triangles a face mesh may have, in [1, 20000000].
     #[arg(long, global = true, default_value_t = face_prep::InputLimits::default().max_triangles)]
     pub(crate) max_input_triangles: usize,
-    /// Most muscles a muscle file may hold (`rig --muscles`).
+    /// Most muscles a muscle file may hold (`rig --muscles`), in [1, 10000].
     #[arg(long, global = true, default_value_t = face_prep::InputLimits::default().max_muscles)]
     pub(crate) max_muscles: usize,
 }
@@ -125,24 +126,26 @@ pub(crate) struct SheetArgs {
 
 #[derive(Args)]
 pub(crate) struct SolverArgs {
-    /// Poisson ratio of the tissue, in [0, 0.5).
+    /// Poisson ratio of the tissue, in [0, 0.49].
     #[arg(long, default_value_t = 0.45, allow_negative_numbers = true)]
     pub(crate) poisson: f64,
-    /// Faces with more front triangles than this are simulated on a simplified copy.
+    /// Faces with more front triangles than this are simulated on a simplified copy; in
+    /// [100, 6000] (the dense solve grows with its square: 6000 needs about 12 GB).
     #[arg(long, default_value_t = LargeFaceParams::default().max_triangles, allow_negative_numbers = true)]
     pub(crate) max_triangles: usize,
-    /// Triangle count of the simplified copy.
-    #[arg(long, default_value_t = LargeFaceParams::default().target_triangles, allow_negative_numbers = true)]
-    pub(crate) target_triangles: usize,
+    /// Triangle count of the simplified copy, in [100, 6000]; default the smaller of 1500 and
+    /// --max-triangles.
+    #[arg(long, allow_negative_numbers = true)]
+    pub(crate) target_triangles: Option<usize>,
     /// How a large face's copy is made: `collapse` (edge collapses that keep input vertices)
     /// or `remesh` (near-equilateral triangles, finer at the mouth and eyes, mirrored on a
     /// mirror-symmetric face).
     #[arg(long, default_value = "collapse", value_parser = parse_copy_method)]
     pub(crate) copy: facebem::copy::CopyMethod,
-    /// Back-face offset of the shell, as a fraction of the face size.
+    /// Back-face offset of the shell, as a fraction of the face size, in [0.0005, 0.2].
     #[arg(long, default_value_t = RigParams::default().offset, allow_negative_numbers = true)]
     pub(crate) offset: f64,
-    /// Rim thickness of the shell, as a fraction of the face size.
+    /// Rim thickness of the shell, as a fraction of the face size, in [0.0005, 0.2].
     #[arg(long, default_value_t = RigParams::default().thickness, allow_negative_numbers = true)]
     pub(crate) thickness: f64,
     /// Simulate eyelids and lips that roll in behind the eye and mouth contours too (by

@@ -72,7 +72,30 @@ fn one_line(e: &anyhow::Error) -> String {
     msg
 }
 
+/// Refuses `value` of `option` outside `range`, naming both, before any work.
+pub(crate) fn check_range<T: PartialOrd + std::fmt::Display>(
+    option: &str,
+    value: T,
+    range: std::ops::RangeInclusive<T>,
+) -> Result<()> {
+    if !range.contains(&value) {
+        anyhow::bail!(
+            "{option} {value} is out of range: must be in [{}, {}]",
+            range.start(),
+            range.end()
+        );
+    }
+    Ok(())
+}
+
 fn run(cli: Cli) -> Result<()> {
+    check_range("--max-input-mb", cli.max_input_mb, 0..=4096)?;
+    check_range(
+        "--max-input-triangles",
+        cli.max_input_triangles,
+        1..=20_000_000,
+    )?;
+    check_range("--max-muscles", cli.max_muscles, 1..=10_000)?;
     let _ = LIMITS.set(face_prep::InputLimits {
         max_file_bytes: cli.max_input_mb.saturating_mul(1 << 20),
         max_positions: cli.max_input_triangles,

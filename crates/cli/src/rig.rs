@@ -53,7 +53,8 @@ pub(crate) fn model_from_opened(path: &Path, opened: Opened) -> Result<FaceModel
     match opened {
         Opened::Model(model) => Ok(*model),
         Opened::Face { mesh, obj_source } => {
-            eprintln!("{} is a face mesh: computing its rig first", path.display());
+            // On stdout: stderr holds only warnings and the one error line (issue 36).
+            println!("{} is a face mesh: computing its rig first", path.display());
             compute(&mesh, obj_source, &PipelineParams::default())
         }
     }
@@ -78,20 +79,11 @@ pub(crate) fn check_trust(model: &FaceModel, force: bool) -> Result<()> {
     )
 }
 
-pub(crate) fn rig(
-    face: &Path,
-    output: &Path,
-    muscles: Option<&Path>,
-    solver: &SolverArgs,
-    force: bool,
-) -> Result<()> {
-    let inputs: Vec<&Path> = std::iter::once(face).chain(muscles).collect();
-    facebem::check_output(output, &inputs, &["rig"], "a rig file")?;
-    let (mesh, obj_source) = match open(face)? {
-        Opened::Face { mesh, obj_source } => (mesh, obj_source),
-        Opened::Model(_) => bail!("{} is already a rig file; give a face mesh", face.display()),
-    };
-    let mut params = PipelineParams {
+/// The pipeline's parameters from the command line, every one checked against its documented
+/// range ([`PipelineParams::validate`]) before any file is read; an error names the option.
+pub(crate) fn pipeline_params(solver: &SolverArgs) -> Result<PipelineParams> {
+    let default_target = LargeFaceParams::default().target_triangles;
+    let params = PipelineParams {
         rig: RigParams {
             offset: solver.offset,
             thickness: solver.thickness,
@@ -103,12 +95,47 @@ pub(crate) fn rig(
         peel_rolled_in: !solver.keep_rolled_in,
         large_face: LargeFaceParams {
             max_triangles: solver.max_triangles,
-            target_triangles: solver.target_triangles,
+            target_triangles: solver
+                .target_triangles
+                .unwrap_or(default_target.min(solver.max_triangles)),
             method: solver.copy,
             ..LargeFaceParams::default()
         },
         ..PipelineParams::default()
     };
+    if let Err(e) = params.validate() {
+        let option = match e.name.as_str() {
+            "poisson" => "--poisson",
+            "large_face.max_triangles" => "--max-triangles",
+            "large_face.target_triangles" => "--target-triangles",
+            "rig.offset" => "--offset",
+            "rig.thickness" => "--thickness",
+            _ => bail!("{e}"),
+        };
+        bail!(
+            "{option} {} is out of range: must be in {}",
+            e.value,
+            e.range
+        );
+    }
+    Ok(params)
+}
+
+pub(crate) fn rig(
+    face: &Path,
+    output: &Path,
+    muscles: Option<&Path>,
+    solver: &SolverArgs,
+    force: bool,
+) -> Result<()> {
+    let mut params = pipeline_params(solver)?;
+    let inputs: Vec<&Path> = std::iter::once(face).chain(muscles).collect();
+    facebem::check_output(output, &inputs, &["rig"], "a rig file")?;
+    let (mesh, obj_source) = match open(face)? {
+        Opened::Face { mesh, obj_source } => (mesh, obj_source),
+        Opened::Model(_) => bail!("{} is already a rig file; give a face mesh", face.display()),
+    };
+    cache::check_rig_size(output, &mesh)?;
     if let Some(file) = muscles {
         let rig = facebem::prep_rig(&mesh, &params)?;
         let limits = LIMITS.get().copied().unwrap_or_default();

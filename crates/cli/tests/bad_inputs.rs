@@ -158,3 +158,221 @@ fn muscle_limit_is_overridable_from_the_command_line() {
     assert!(err.contains("line 7: more than 1 muscles"), "{err}");
     assert!(!out_rig.exists());
 }
+
+fn mediapipe() -> PathBuf {
+    Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."))
+        .join("assets/mediapipe_canonical_4loop.obj")
+}
+
+/// The MediaPipe face's lines with a `vt` and a `vn` per `v` (after the `v` lines) and every
+/// corner `i/i/i`, then `edit` applied.
+fn textured_mediapipe(edit: impl FnOnce(&mut Vec<String>)) -> String {
+    let text = std::fs::read_to_string(mediapipe()).unwrap();
+    let n = text.lines().filter(|l| l.starts_with("v ")).count();
+    let mut lines: Vec<String> = Vec::new();
+    for l in text.lines() {
+        if let Some(corners) = l.strip_prefix("f ") {
+            let c: Vec<String> = corners
+                .split_whitespace()
+                .map(|i| format!("{i}/{i}/{i}"))
+                .collect();
+            lines.push(format!("f {}", c.join(" ")));
+            continue;
+        }
+        lines.push(l.to_owned());
+    }
+    let after_v = lines.iter().rposition(|l| l.starts_with("v ")).unwrap() + 1;
+    let extra = (0..n)
+        .map(|i| format!("vt {} 0.5", i as f64 / n as f64))
+        .chain((0..n).map(|_| "vn 0 0 1".to_owned()));
+    lines.splice(after_v..after_v, extra);
+    edit(&mut lines);
+    lines.join("\n") + "\n"
+}
+
+/// Runs `facebem` with `args` in `dir`; returns the exit code and stderr.
+fn facebem(dir: &Path, args: &[&str]) -> (Option<i32>, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_facebem"))
+        .current_dir(dir)
+        .args(args)
+        .output()
+        .unwrap();
+    (
+        out.status.code(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+/// Asserts exit 1 with one line `error: …` containing `needle`, and that `dir` holds nothing
+/// but `inputs`.
+fn assert_refused(dir: &Path, args: &[&str], needle: &str, inputs: usize) {
+    let (code, err) = facebem(dir, args);
+    assert_eq!(code, Some(1), "{args:?}: {err}");
+    let lines: Vec<&str> = err.lines().collect();
+    assert_eq!(lines.len(), 1, "{args:?}: {err}");
+    assert!(
+        lines[0].starts_with("error: ") && lines[0].contains(needle),
+        "{args:?}: {err}"
+    );
+    assert_eq!(
+        listing(dir).len(),
+        inputs,
+        "{args:?} wrote {:?}",
+        listing(dir)
+    );
+}
+
+/// Writes `text` as `name` in a new temp dir; `info` and `rig` on it must both fail with
+/// `needle` and write nothing.
+fn assert_face_refused(name: &str, text: &str, needle: &str) {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join(name), text).unwrap();
+    assert_refused(dir.path(), &["info", name], needle, 1);
+    assert_refused(dir.path(), &["rig", name, "-o", "out.rig"], needle, 1);
+}
+
+#[test]
+fn cli_textured_face_is_accepted() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("face.obj"), textured_mediapipe(|_| {})).unwrap();
+    let (code, err) = facebem(dir.path(), &["info", "face.obj"]);
+    assert_eq!(code, Some(0), "{err}");
+}
+
+#[test]
+fn cli_refuses_obj_with_nan_texture_coordinate() {
+    let text = textured_mediapipe(|lines| {
+        let i = lines.iter().position(|l| l.starts_with("vt ")).unwrap() + 10;
+        lines[i] = "vt nan nan".to_owned();
+    });
+    let line = text.lines().position(|l| l == "vt nan nan").unwrap() + 1;
+    let needle =
+        format!("face.obj: OBJ line {line}: \"vt nan nan\" holds a number that is not finite");
+    assert_face_refused("face.obj", &text, &needle);
+}
+
+#[test]
+fn cli_refuses_obj_with_infinite_normal() {
+    let text = textured_mediapipe(|lines| {
+        let i = lines.iter().position(|l| l.starts_with("vn ")).unwrap() + 3;
+        lines[i] = "vn inf 0 1".to_owned();
+    });
+    let line = text.lines().position(|l| l == "vn inf 0 1").unwrap() + 1;
+    let needle = format!("OBJ line {line}: \"vn inf 0 1\" holds a number that is not finite");
+    assert_face_refused("face.obj", &text, &needle);
+}
+
+#[test]
+fn cli_refuses_obj_with_non_finite_or_zero_w() {
+    let text = std::fs::read_to_string(mediapipe()).unwrap();
+    // Line 9 is the 6th `v` line.
+    let with_w = |w: &str| {
+        let mut lines: Vec<String> = text.lines().map(str::to_owned).collect();
+        lines[8] = format!("{} {w}", lines[8]);
+        lines.join("\n") + "\n"
+    };
+    assert_face_refused(
+        "face.obj",
+        &with_w("inf"),
+        "OBJ line 9: \"v 0.000000 0.365669 7.242870 inf\" holds a number that is not finite",
+    );
+    assert_face_refused(
+        "face.obj",
+        &with_w("0"),
+        "OBJ line 9: \"v 0.000000 0.365669 7.242870 0\" has w = 0",
+    );
+}
+
+#[test]
+fn cli_refuses_gltf_with_nan_texture_coordinate() {
+    // The corpus file: a triangle whose TEXCOORD_0 (accessor 2) has a NaN in element 1.
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::copy(
+        corpus().join("gltf_texcoord_nan.gltf"),
+        dir.path().join("face.gltf"),
+    )
+    .unwrap();
+    let needle = "face.gltf: glTF error: accessor 2 (TEXCOORD_0): element 1 is not finite";
+    assert_refused(dir.path(), &["info", "face.gltf"], needle, 1);
+    assert_refused(
+        dir.path(),
+        &["rig", "face.gltf", "-o", "out.rig"],
+        needle,
+        1,
+    );
+}
+
+#[test]
+fn cli_refuses_obj_vertex_defined_after_its_face() {
+    // The last `v` line (v 468) moved to the end: the faces using it come before it.
+    let text = std::fs::read_to_string(mediapipe()).unwrap();
+    let mut lines: Vec<&str> = text.lines().collect();
+    let last_v = lines.iter().rposition(|l| l.starts_with("v ")).unwrap();
+    let v = lines.remove(last_v);
+    lines.push(v);
+    let first_use = lines
+        .iter()
+        .position(|l| l.starts_with("f ") && l.split_whitespace().any(|c| c == "468"))
+        .unwrap()
+        + 1;
+    let needle = format!(
+        "OBJ line {first_use}: face corner \"468\" refers to a `v` line that does not come before \
+         the face (there are 467 above it)"
+    );
+    assert_face_refused("face.obj", &(lines.join("\n") + "\n"), &needle);
+}
+
+#[test]
+fn cli_refuses_muscle_file_with_duplicate_names() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("dup.muscles"),
+        "[Name]\nfrontalis_l\n[Size]\n1\n[Data]\n0\n[Name]\nm\n[Size]\n1\n[Data]\n1\n\
+         [Name]\nFrontalis L\n[Size]\n1\n[Data]\n2\n",
+    )
+    .unwrap();
+    let face = mediapipe();
+    let args = [
+        "rig",
+        face.to_str().unwrap(),
+        "--muscles",
+        "dup.muscles",
+        "-o",
+        "out.rig",
+    ];
+    let needle = "muscle file dup.muscles: line 14: muscle \"Frontalis L\" has the same name as the \
+                  muscle at line 2 (both are \"frontalis_l\"); muscle names must be unique";
+    assert_refused(dir.path(), &args, needle, 1);
+}
+
+#[test]
+fn cli_reads_muscle_file_with_utf8_bom_and_exports_it() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("bom.muscles"),
+        "\u{feff}[Name]\r\nm0\r\n[Size]\r\n1\r\n[Data]\r\n0\r\n[Name]\r\nm1\r\n[Size]\r\n1\r\n[Data]\r\n1\r\n",
+    )
+    .unwrap();
+    let face = mediapipe();
+    let (code, err) = facebem(
+        dir.path(),
+        &[
+            "rig",
+            face.to_str().unwrap(),
+            "--muscles",
+            "bom.muscles",
+            "-o",
+            "bom.rig",
+        ],
+    );
+    assert_eq!(code, Some(0), "{err}");
+    // What is accepted exports: a pose moving the muscle named on the BOM's line, and glTF.
+    let (code, err) = facebem(
+        dir.path(),
+        &["pose", "bom.rig", "--set", "m0=-1", "-o", "pose.obj"],
+    );
+    assert_eq!(code, Some(0), "{err}");
+    let (code, err) = facebem(dir.path(), &["export", "bom.rig", "--gltf", "bom.glb"]);
+    assert_eq!(code, Some(0), "{err}");
+    assert!(dir.path().join("pose.obj").is_file() && dir.path().join("bom.glb").is_file());
+}

@@ -6,8 +6,8 @@
 //! moment) see either the old file or the complete new one. The new file gets the replaced
 //! file's mode, or the mode the umask gives (0644 under umask 022). A symlink, FIFO, device or
 //! folder at the target is refused and left untouched. Temporary files of ours left behind by a
-//! killed writer (their process is gone, or they are older than a day) are removed from the
-//! folder on the next write there.
+//! killed writer (their process is gone and they have not changed for ten minutes, or they are
+//! older than a day) are removed from the folder on the next write there.
 //!
 //! ```
 //! let dir = tempfile::tempdir().unwrap();
@@ -37,6 +37,11 @@ const TMP_PREFIX: &str = ".facebem-";
 const TMP_SUFFIX: &str = ".tmp";
 /// Temporary files of ours older than this are stale even if their process id is alive again.
 const STALE_AFTER: Duration = Duration::from_secs(24 * 3600);
+/// A temporary file whose process id is not visible here is stale only once it has not changed
+/// for this long: a writer in another PID namespace (a container sharing the folder) is not
+/// visible in our `/proc`, but a live writer changes its file continuously (regression
+/// `a_fresh_temporary_of_an_unseen_process_is_kept`, issue 36).
+const QUIET_AFTER: Duration = Duration::from_secs(600);
 
 /// What kind of thing is at `path` if it is not a regular file (`None`: a regular file or
 /// nothing).
@@ -117,7 +122,8 @@ fn folder_of(path: &Path) -> &Path {
 }
 
 /// Removes `.facebem-<pid>-*.tmp` files in `dir` owned by the owner of `ours` whose process is
-/// gone (Linux: no `/proc/<pid>`) or that are older than a day. Best effort: errors are ignored.
+/// gone (Linux: no `/proc/<pid>`) and that have not changed for [`QUIET_AFTER`], or that are
+/// older than a day. Best effort: errors are ignored.
 fn remove_stale_temporaries(dir: &Path, ours: &Path) {
     let Ok(our_meta) = std::fs::metadata(ours) else {
         return;
@@ -145,12 +151,12 @@ fn remove_stale_temporaries(dir: &Path, ours: &Path) {
         if !meta.is_file() || !same_owner(&meta, &our_meta) {
             continue;
         }
-        let old = meta
+        let age = meta
             .modified()
             .ok()
             .and_then(|m| now.duration_since(m).ok())
-            .is_some_and(|age| age > STALE_AFTER);
-        if old || !process_alive(pid) {
+            .unwrap_or_default();
+        if age > STALE_AFTER || (age > QUIET_AFTER && !process_alive(pid)) {
             let _ = std::fs::remove_file(&path);
         }
     }
@@ -202,6 +208,26 @@ pub enum OutputPathError {
         /// Its folder.
         folder: PathBuf,
     },
+    /// The output's folder exists but a file cannot be created in it (read-only, no permission).
+    #[error("output {path}: cannot write in folder {}: {source}", folder.display())]
+    NotWritable {
+        /// The output path.
+        path: PathBuf,
+        /// Its folder.
+        folder: PathBuf,
+        /// Why a file cannot be created there.
+        #[source]
+        source: std::io::Error,
+    },
+    /// The path itself cannot name a file (too long, or ending in a separator).
+    #[error("output {path} cannot be written: {source}")]
+    Unusable {
+        /// The output path.
+        path: PathBuf,
+        /// Why.
+        #[source]
+        source: std::io::Error,
+    },
     /// Something that is not a regular file is at the output path.
     #[error("output {path} is {kind}; only a regular file is replaced")]
     NotRegular {
@@ -221,8 +247,9 @@ pub enum OutputPathError {
 }
 
 /// Checks an output path before any computation: its extension is one of `extensions`
-/// (case-insensitive, without the dot), its folder exists, nothing but a regular file is there,
-/// and it is not (a hard link of) any of `inputs`.
+/// (case-insensitive, without the dot), its folder exists and a file can be created in it,
+/// nothing but a regular file is there, and it is not (a hard link of) any of `inputs` or any
+/// file they read ([`crate::input::files_read_by`]: a glTF's external buffers and images).
 ///
 /// ```
 /// use face_prep::atomic_write::{OutputPathError, check_output};
@@ -260,8 +287,36 @@ pub fn check_output(
             folder: folder.to_path_buf(),
         });
     }
-    let Ok(meta) = std::fs::symlink_metadata(path) else {
-        return Ok(());
+    // A probe file, removed on drop: a read-only folder is found now, not after the solve
+    // (regression `a_read_only_output_folder_is_refused_before_computing`, issue 36).
+    let probe = tempfile::Builder::new()
+        .prefix(&format!("{TMP_PREFIX}{}-", std::process::id()))
+        .suffix(TMP_SUFFIX)
+        .tempfile_in(folder);
+    if let Err(source) = probe {
+        return Err(OutputPathError::NotWritable {
+            path: path.to_path_buf(),
+            folder: folder.to_path_buf(),
+            source,
+        });
+    }
+    // A path naming a folder (`out.glb/`) or one the system cannot use (a name over 255
+    // bytes) is refused now, not when the file is written after the solve (issue 36).
+    if path.as_os_str().as_encoded_bytes().ends_with(b"/") {
+        return Err(OutputPathError::Unusable {
+            path: path.to_path_buf(),
+            source: std::io::Error::other("it ends in a path separator"),
+        });
+    }
+    let meta = match std::fs::symlink_metadata(path) {
+        Ok(meta) => meta,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(()),
+        Err(source) => {
+            return Err(OutputPathError::Unusable {
+                path: path.to_path_buf(),
+                source,
+            });
+        }
     };
     if let Some(kind) = non_regular_kind(&meta) {
         return Err(OutputPathError::NotRegular {
@@ -269,7 +324,15 @@ pub fn check_output(
             kind,
         });
     }
-    for input in inputs {
+    let read: Vec<PathBuf> = inputs
+        .iter()
+        .flat_map(|input| crate::input::files_read_by(input))
+        .collect();
+    let all = inputs
+        .iter()
+        .copied()
+        .chain(read.iter().map(PathBuf::as_path));
+    for input in all {
         if let Ok(im) = std::fs::metadata(input)
             && same_file(&meta, &im, path, input)
         {
@@ -324,16 +387,38 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         // pid 0 never names a user process; our own pid is alive.
         let dead = dir.path().join(".facebem-0-abc.tmp");
+        let fresh_dead = dir.path().join(".facebem-0-fresh.tmp");
         let alive = dir
             .path()
             .join(format!(".facebem-{}-abc.tmp", std::process::id()));
         let foreign = dir.path().join(".other-0-abc.tmp");
-        for p in [&dead, &alive, &foreign] {
+        for p in [&dead, &fresh_dead, &alive, &foreign] {
             std::fs::write(p, b"partial").unwrap();
+        }
+        let quiet = SystemTime::now() - QUIET_AFTER - Duration::from_secs(60);
+        for p in [&dead, &alive, &foreign] {
+            let file = std::fs::File::options().write(true).open(p).unwrap();
+            file.set_modified(quiet).unwrap();
         }
         write_atomic(&dir.path().join("out.bin"), b"x").unwrap();
         assert!(!dead.exists());
         assert!(alive.exists());
         assert!(foreign.exists());
+        assert!(
+            fresh_dead.exists(),
+            "a file changed a moment ago may be written now"
+        );
+    }
+
+    /// Regression (issue 36): a temporary file of a writer in another PID namespace (its pid
+    /// not in our `/proc`) was removed while it was still being written. Recently changed, it
+    /// is kept whatever its pid.
+    #[test]
+    fn a_fresh_temporary_of_an_unseen_process_is_kept() {
+        let dir = tempfile::tempdir().unwrap();
+        let writing = dir.path().join(".facebem-999999999-abc.tmp");
+        std::fs::write(&writing, b"still being written").unwrap();
+        write_atomic(&dir.path().join("out.bin"), b"x").unwrap();
+        assert_eq!(std::fs::read(&writing).unwrap(), b"still being written");
     }
 }

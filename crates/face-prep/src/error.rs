@@ -137,6 +137,16 @@ pub enum GltfError {
         /// What is wrong.
         reason: String,
     },
+    /// An accessor of a mesh attribute holds a NaN or infinite number.
+    #[error("accessor {accessor} ({attribute}): element {element} is not finite")]
+    NonFinite {
+        /// Accessor index.
+        accessor: usize,
+        /// The attribute it is read as (`POSITION`, `NORMAL`, `TEXCOORD_0`).
+        attribute: &'static str,
+        /// The first element with a non-finite component (0-based).
+        element: usize,
+    },
     /// An object of the document is invalid (index out of range, bad type, out of bounds...).
     #[error("{what} {index}: {reason}")]
     Invalid {
@@ -146,6 +156,82 @@ pub enum GltfError {
         index: usize,
         /// What is wrong.
         reason: String,
+    },
+}
+
+/// What is wrong with a line of an OBJ file ([`crate::obj_text`]). Line numbers are 1-based.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[non_exhaustive]
+pub enum ObjLineError {
+    /// A `v`, `vt` or `vn` line holds a NaN or infinite number (or a position that overflows
+    /// once divided by its w).
+    #[error(
+        "OBJ line {line}: {} holds a number that is not finite",
+        short_text(text)
+    )]
+    NonFinite {
+        /// Line number.
+        line: usize,
+        /// The line's text.
+        text: String,
+    },
+    /// A `vt` line holds a number beyond the 32-bit float range (glTF stores texture
+    /// coordinates as 32-bit floats).
+    #[error(
+        "OBJ line {line}: {} holds a texture coordinate beyond ±3.4e38",
+        short_text(text)
+    )]
+    TexcoordOutOfRange {
+        /// Line number.
+        line: usize,
+        /// The line's text.
+        text: String,
+    },
+    /// A `v` line's w is zero (its position would be divided by zero).
+    #[error("OBJ line {line}: {} has w = 0", short_text(text))]
+    ZeroW {
+        /// Line number.
+        line: usize,
+        /// The line's text.
+        text: String,
+    },
+    /// A `v`, `vt` or `vn` line without the numbers it needs.
+    #[error("OBJ line {line}: {} is not {expected}", short_text(text))]
+    Malformed {
+        /// Line number.
+        line: usize,
+        /// The line's text.
+        text: String,
+        /// What the line should be.
+        expected: &'static str,
+    },
+    /// A face corner that is not `v`, `v/vt`, `v//vn` or `v/vt/vn` with non-zero integers.
+    #[error(
+        "OBJ line {line}: face corner {} is not v, v/vt, v//vn or v/vt/vn",
+        short_text(corner)
+    )]
+    BadCorner {
+        /// Line number.
+        line: usize,
+        /// The corner as written.
+        corner: String,
+    },
+    /// A face corner refers to a `v`, `vt` or `vn` line that does not come before the face
+    /// (OBJ indices count the lines above the face; a later line cannot be referred to).
+    #[error(
+        "OBJ line {line}: face corner {} refers to a `{statement}` line that does not come \
+         before the face (there are {defined} above it)",
+        short_text(corner)
+    )]
+    UndefinedCorner {
+        /// Line number.
+        line: usize,
+        /// The corner as written.
+        corner: String,
+        /// `v`, `vt` or `vn`.
+        statement: &'static str,
+        /// How many such lines come before the face.
+        defined: usize,
     },
 }
 
@@ -175,6 +261,10 @@ pub enum PrepError {
         /// tobj's description of the problem.
         reason: String,
     },
+    /// A line of the OBJ is invalid (a non-finite number, a zero w, a face corner referring to
+    /// a line that does not come before it).
+    #[error(transparent)]
+    ObjLine(#[from] ObjLineError),
     /// The glTF/GLB document is malformed, or a buffer cannot be read safely.
     #[error("glTF error: {0}")]
     Gltf(#[from] GltfError),
@@ -295,7 +385,7 @@ pub enum PrepError {
         triangles: [usize; 2],
     },
     /// A vertex where two boundary loops touch (bow-tie), so loops are ambiguous.
-    #[error("non-manifold vertex {vertex} at {p}: {outgoing} boundary edges leave it", p = fmt_p(position))]
+    #[error("non-manifold vertex {vertex} at {p}: {outgoing} boundary edges leave it (two boundary loops touch there; an unwelded seam? vertices closer than 1e-9 of the face's size are welded, merge wider gaps by distance first)", p = fmt_p(position))]
     NonManifoldVertex {
         /// Vertex index.
         vertex: u32,
@@ -379,6 +469,10 @@ pub enum PrepError {
         /// Why it is rejected.
         reason: &'static str,
     },
+    /// Two muscles have the same id ([`crate::Muscle::id`]): their morph targets and sliders
+    /// would share a name.
+    #[error("two muscles are named {} (muscle names must be unique)", short_text(.0))]
+    DuplicateMuscle(String),
     /// Muscle index out of range in [`crate::FaceRig::muscle_pattern`] callers.
     #[error("muscle index {index} out of range ({count} muscles)")]
     NoSuchMuscle {
@@ -469,6 +563,24 @@ pub enum MuscleFileError {
         muscle: String,
         /// Missing block.
         missing: &'static str,
+    },
+    /// Two muscles with the same id ([`crate::Muscle::id`]: a standard muscle's id, whatever
+    /// name denotes it, else the name): their sliders and morph targets would share a name.
+    #[error(
+        "line {line}: muscle {} has the same name as the muscle at line {first_line} (both are \
+         {}); muscle names must be unique",
+        short_text(name),
+        short_text(id)
+    )]
+    DuplicateName {
+        /// Line of the second name.
+        line: usize,
+        /// The second name as written.
+        name: String,
+        /// The id both names denote.
+        id: String,
+        /// Line of the first name.
+        first_line: usize,
     },
     /// More muscles than [`crate::InputLimits::max_muscles`].
     #[error("line {line}: more than {limit} muscles (input limit)")]

@@ -31,17 +31,18 @@ pub use controls::{
     muscles, teeth,
 };
 pub use frame::{features, orient, topology};
-pub use input::{gltf_read, limits, units};
+pub use input::{gltf_read, limits, obj_text, units};
 
-pub use error::{LoopSummary, MuscleFileError, PrepError};
+pub use error::{LoopSummary, MuscleFileError, ObjLineError, PrepError};
 pub use features::{Box2, FeatureBoxes};
 pub use gltf_read::GltfError;
 pub use input::face_mesh::{
-    FaceMesh, GltfFaceData, gltf_face_data, load_face, load_face_mesh_named, load_face_with_limits,
+    FaceMesh, GltfFaceData, WELD_RELATIVE_TOLERANCE, gltf_face_data, load_face,
+    load_face_mesh_named, load_face_with_limits,
 };
 pub use limits::InputLimits;
 pub use muscle_kind::{ControlSpec, Generator, MuscleKind, Placed, Side};
 pub use muscles::Muscle;
 pub use orient::FaceLoops;
-pub use rig::{FaceRig, RigParams};
+pub use rig::{FaceRig, RigParams, check_not_scrambled};
 pub use shell::{ElementTag, FrontRepair, Shell};

@@ -78,8 +78,51 @@ impl Default for RigParams {
 }
 
 impl RigParams {
-    fn check(&self) -> Result<(), PrepError> {
-        let positive = |name, v: f64| {
+    /// Documented range of [`RigParams::offset`] and [`RigParams::thickness`] (fractions of
+    /// the face size: 0.1 mm to 4 cm on a 20 cm face). Below it the back face coincides with
+    /// the front to rounding (`--offset 1e-320` made the solve singular; at the lower end the
+    /// solve is near-singular and the rig is reported untrustworthy); above it the shell is
+    /// thicker than a face's soft tissue.
+    pub const SHELL_FRACTION_RANGE: std::ops::RangeInclusive<f64> = 0.0005..=0.2;
+    /// Documented range of [`RigParams::smoothing_iterations`], [`RigParams::repair_rounds`]
+    /// and [`RigParams::front_repair_rounds`] (each round costs a pass over the shell).
+    pub const ROUNDS_RANGE: std::ops::RangeInclusive<usize> = 0..=1000;
+
+    /// Checks every numeric field against its documented range; the first field outside is
+    /// returned as [`PrepError::InvalidParam`] naming it. [`FaceRig::build`] calls it first.
+    ///
+    /// ```
+    /// use face_prep::{PrepError, RigParams};
+    /// assert!(RigParams::default().validate().is_ok());
+    /// let thin = RigParams { offset: 1e-320, ..RigParams::default() };
+    /// assert!(matches!(thin.validate(), Err(PrepError::InvalidParam { name: "offset", .. })));
+    /// ```
+    pub fn validate(&self) -> Result<(), PrepError> {
+        let within = |name, v: f64, range: std::ops::RangeInclusive<f64>, reason| {
+            if range.contains(&v) {
+                Ok(())
+            } else {
+                Err(PrepError::InvalidParam {
+                    name,
+                    value: v,
+                    reason,
+                })
+            }
+        };
+        let shell = Self::SHELL_FRACTION_RANGE;
+        within(
+            "offset",
+            self.offset,
+            shell.clone(),
+            "must be in [0.0005, 0.2]",
+        )?;
+        within(
+            "thickness",
+            self.thickness,
+            shell,
+            "must be in [0.0005, 0.2]",
+        )?;
+        let open_unit = |name, v: f64| {
             if v.is_finite() && v > 0.0 && v < 1.0 {
                 Ok(())
             } else {
@@ -90,10 +133,8 @@ impl RigParams {
                 })
             }
         };
-        positive("offset", self.offset)?;
-        positive("thickness", self.thickness)?;
-        positive("ray_spacing", self.ray_spacing)?;
-        positive("taper", self.taper)?;
+        open_unit("ray_spacing", self.ray_spacing)?;
+        open_unit("taper", self.taper)?;
         if !(self.offset_clamp > 0.0 && self.offset_clamp <= 1.0) {
             return Err(PrepError::InvalidParam {
                 name: "offset_clamp",
@@ -101,7 +142,55 @@ impl RigParams {
                 reason: "must be in (0, 1]",
             });
         }
-        Ok(())
+        for (name, rounds) in [
+            ("smoothing_iterations", self.smoothing_iterations),
+            ("repair_rounds", self.repair_rounds),
+            ("front_repair_rounds", self.front_repair_rounds),
+        ] {
+            if !Self::ROUNDS_RANGE.contains(&rounds) {
+                return Err(PrepError::InvalidParam {
+                    name,
+                    value: rounds as f64,
+                    reason: "must be in [0, 1000]",
+                });
+            }
+        }
+        within(
+            "anatomical.strength",
+            self.anatomical.strength,
+            0.0..=10.0,
+            "must be in [0, 10]",
+        )?;
+        within(
+            "anatomical.core_fraction",
+            self.anatomical.core_fraction,
+            0.0..=1.0,
+            "must be in [0, 1]",
+        )
+    }
+}
+
+/// Refuses a surface on which one triangle crosses more than
+/// [`crate::shell::MAX_REPAIRABLE_CROSSINGS`] others ([`PrepError::ScrambledSurface`]): its
+/// positions are out of order (a `v` line moved or swapped), not folded. [`FaceRig::build`]
+/// checks its front with it, and a pipeline checks the input with it before making a copy (a
+/// remeshed copy of a scrambled face took 50 s before the rig refused it; issue 36).
+///
+/// ```
+/// let face = face_prep::load_face(std::path::Path::new(concat!(
+///     env!("CARGO_MANIFEST_DIR"), "/../../assets/mediapipe_canonical_4loop.obj"))).unwrap();
+/// assert!(face_prep::check_not_scrambled(&face.vertices, &face.triangles).is_ok());
+/// ```
+pub fn check_not_scrambled(vertices: &[DVec3], triangles: &[[u32; 3]]) -> Result<(), PrepError> {
+    let pairs = crate::shell::intersecting_pairs(vertices, triangles);
+    match crate::shell::most_crossed(&pairs, triangles.len()) {
+        Some((triangle, crossings)) if crossings > crate::shell::MAX_REPAIRABLE_CROSSINGS => {
+            Err(PrepError::ScrambledSurface {
+                triangle,
+                crossings,
+            })
+        }
+        _ => Ok(()),
     }
 }
 
@@ -170,7 +259,7 @@ impl FaceRig {
         params: &RigParams,
         boxes: Option<FeatureBoxes>,
     ) -> Result<FaceRig, PrepError> {
-        params.check()?;
+        params.validate()?;
         let loops = topology::validate(&face.vertices, &face.triangles)?;
         topology::check_four_loops(&face.vertices, &loops)?;
         let (canonical_from_input, loops) =
@@ -192,16 +281,7 @@ impl FaceRig {
         };
         // Scrambled geometry (a `v` line swapped) is refused before the shell repair, which
         // cannot open it and would spend O(triangles²) per round trying.
-        let front_pairs = crate::shell::intersecting_pairs(&verts, &face.triangles);
-        if let Some((triangle, crossings)) =
-            crate::shell::most_crossed(&front_pairs, face.triangles.len())
-            && crossings > crate::shell::MAX_REPAIRABLE_CROSSINGS
-        {
-            return Err(PrepError::ScrambledSurface {
-                triangle,
-                crossings,
-            });
-        }
+        check_not_scrambled(&verts, &face.triangles)?;
         let shell = Shell::build(
             &verts,
             &face.triangles,
@@ -292,10 +372,15 @@ impl FaceRig {
 
     /// Replaces the muscles (e.g. from an edited muscle file). Every element must exist, chains
     /// must not repeat an element, front chains must hold Front elements, back chains Back
-    /// elements, and no muscle may use a skull element.
+    /// elements, no muscle may use a skull element, and no two muscles may have the same id
+    /// ([`Muscle::id`]).
     pub fn with_muscles(mut self, muscles: Vec<Muscle>) -> Result<FaceRig, PrepError> {
         let skull: HashSet<u32> = self.skull.iter().copied().collect();
+        let mut ids = HashSet::new();
         for m in &muscles {
+            if !ids.insert(m.id()) {
+                return Err(PrepError::DuplicateMuscle(m.id().to_owned()));
+            }
             for (chain, want) in [
                 (&m.front_chain, ElementTag::Front),
                 (&m.back_chain, ElementTag::Back),

@@ -1,6 +1,6 @@
 //! Synthetic bad inputs: every one must be rejected with the typed error that names the problem.
 
-use face_prep::{FaceMesh, PrepError, load_face, topology};
+use face_prep::{FaceMesh, ObjLineError, PrepError, load_face, topology};
 use glam::DVec3;
 use std::path::PathBuf;
 
@@ -144,7 +144,7 @@ fn one_flipped_triangle_is_inconsistent_winding() {
 }
 
 #[test]
-fn nan_vertex_in_obj_names_its_input_index() {
+fn nan_vertex_in_obj_names_its_line() {
     let text = mediapipe_text();
     let mut n = 0;
     let bad: String = text
@@ -160,12 +160,12 @@ fn nan_vertex_in_obj_names_its_input_index() {
         })
         .collect::<Vec<_>>()
         .join("\n");
+    // Three comment lines, then the `v` lines: the 8th is line 11.
     match FaceMesh::from_obj_str(&bad) {
-        Err(PrepError::NonFiniteVertex {
-            input_index: 7,
-            position,
-        }) => assert!(position[0].is_nan()),
-        other => panic!("expected NaN vertex 7, got {other:?}"),
+        Err(PrepError::ObjLine(ObjLineError::NonFinite { line: 11, text })) => {
+            assert_eq!(text, "v nan 0.0 1.0")
+        }
+        other => panic!("expected NaN on line 11, got {other:?}"),
     }
 }
 
@@ -190,14 +190,24 @@ fn truncated_obj_is_rejected() {
         FaceMesh::from_obj_str(&text[..first_f]),
         Err(PrepError::EmptyMesh)
     ));
-    // Cut in the middle of a `v` line: tobj's parse error or no faces, never a mesh.
+    // Cut in the middle of a `v` line: a malformed line or no faces, never a mesh.
     assert!(matches!(
         FaceMesh::from_obj_str(&text[..first_f / 2]),
-        Err(PrepError::Obj { .. } | PrepError::EmptyMesh)
+        Err(PrepError::ObjLine(ObjLineError::Malformed { .. }) | PrepError::EmptyMesh)
     ));
     // A face referring past the end of the file.
     let err = FaceMesh::from_obj_str(&format!("{text}\nf 1 2 99999\n")).unwrap_err();
-    assert!(matches!(err, PrepError::Obj { .. }), "{err}");
+    assert!(
+        matches!(
+            err,
+            PrepError::ObjLine(ObjLineError::UndefinedCorner {
+                statement: "v",
+                defined: 468,
+                ..
+            })
+        ),
+        "{err}"
+    );
 }
 
 #[test]
@@ -285,4 +295,194 @@ fn quads_are_triangulated_and_seams_welded() {
         Err(PrepError::WrongLoopCount { count: 1, loops }) => assert_eq!(loops[0].size, 12),
         other => panic!("{other:?}"),
     }
+}
+
+/// The MediaPipe face with `vt` lines (one per `v`, after them) and `vn` lines (one per `v`),
+/// every corner `i/i/i`; `edit` changes the lines before they are joined.
+fn mediapipe_with_texcoords_and_normals(edit: impl FnOnce(&mut Vec<String>)) -> String {
+    let text = mediapipe_text();
+    let n = text.lines().filter(|l| l.starts_with("v ")).count();
+    let mut lines: Vec<String> = Vec::new();
+    let mut v_lines = 0;
+    for l in text.lines() {
+        v_lines += usize::from(l.starts_with("v "));
+        match l.strip_prefix("f ") {
+            Some(corners) => {
+                let c: Vec<String> = corners
+                    .split_whitespace()
+                    .map(|i| format!("{i}/{i}/{i}"))
+                    .collect();
+                lines.push(format!("f {}", c.join(" ")));
+            }
+            None => lines.push(l.to_owned()),
+        }
+        if v_lines == n && l.starts_with("v ") {
+            lines.extend((0..n).map(|i| format!("vt {} 0.5", i as f64 / n as f64)));
+            lines.extend((0..n).map(|_| "vn 0 0 1".to_owned()));
+        }
+    }
+    edit(&mut lines);
+    lines.join("\n") + "\n"
+}
+
+/// 1-based line number of the first line starting with `prefix`.
+fn line_of(text: &str, prefix: &str) -> usize {
+    text.lines().position(|l| l.starts_with(prefix)).unwrap() + 1
+}
+
+#[test]
+fn obj_with_texcoords_and_normals_reads() {
+    let text = mediapipe_with_texcoords_and_normals(|_| {});
+    let face = FaceMesh::from_obj_str(&text).unwrap();
+    assert_eq!(face.vertices.len(), 468);
+}
+
+#[test]
+fn obj_with_nan_texture_coordinate_is_refused_at_read() {
+    let text = mediapipe_with_texcoords_and_normals(|lines| {
+        let i = lines.iter().position(|l| l.starts_with("vt ")).unwrap() + 7;
+        lines[i] = "vt nan nan".to_owned();
+    });
+    let line = line_of(&text, "vt nan");
+    match FaceMesh::from_obj_str(&text) {
+        Err(e @ PrepError::ObjLine(ObjLineError::NonFinite { .. })) => assert_eq!(
+            e.to_string(),
+            format!("OBJ line {line}: \"vt nan nan\" holds a number that is not finite")
+        ),
+        other => panic!("expected a non-finite texture coordinate, got {other:?}"),
+    }
+    // Beyond f32 (glTF stores texture coordinates as f32), it is refused too.
+    let text = mediapipe_with_texcoords_and_normals(|lines| {
+        let i = lines.iter().position(|l| l.starts_with("vt ")).unwrap();
+        lines[i] = "vt 1e39 0".to_owned();
+    });
+    assert!(matches!(
+        FaceMesh::from_obj_str(&text),
+        Err(PrepError::ObjLine(ObjLineError::TexcoordOutOfRange { .. }))
+    ));
+}
+
+#[test]
+fn obj_with_infinite_normal_is_refused_at_read() {
+    for bad in [
+        "vn inf 0 1",
+        "vn 0 -infinity 1",
+        "vn 0 0 NaN",
+        "vn 1e999 0 1",
+    ] {
+        let text = mediapipe_with_texcoords_and_normals(|lines| {
+            let i = lines.iter().position(|l| l.starts_with("vn ")).unwrap() + 3;
+            lines[i] = bad.to_owned();
+        });
+        let line = line_of(&text, bad);
+        match FaceMesh::from_obj_str(&text) {
+            Err(PrepError::ObjLine(ObjLineError::NonFinite { line: l, text })) => {
+                assert_eq!((l, text.as_str()), (line, bad));
+            }
+            other => panic!("{bad}: expected a non-finite normal, got {other:?}"),
+        }
+    }
+}
+
+#[test]
+fn obj_with_non_finite_or_zero_w_is_refused_at_read() {
+    let text = mediapipe_text();
+    // The 6th `v` line (line 9, after three comments) with a fourth number.
+    for (w, zero) in [
+        ("inf", false),
+        ("-inf", false),
+        ("nan", false),
+        ("1e-320", false),
+        ("0", true),
+    ] {
+        let mut n = 0;
+        let bad: String = text
+            .lines()
+            .map(|l| {
+                if l.starts_with("v ") {
+                    n += 1;
+                    if n == 6 {
+                        return format!("{l} {w}");
+                    }
+                }
+                l.to_owned()
+            })
+            .collect::<Vec<_>>()
+            .join("\n");
+        match FaceMesh::from_obj_str(&bad) {
+            Err(PrepError::ObjLine(ObjLineError::ZeroW { line: 9, .. })) if zero => {}
+            Err(PrepError::ObjLine(ObjLineError::NonFinite { line: 9, text })) if !zero => {
+                assert!(text.ends_with(w), "{text}");
+            }
+            other => panic!("w = {w}: got {other:?}"),
+        }
+    }
+}
+
+#[test]
+fn obj_vertex_defined_after_its_face_is_refused_at_read() {
+    // The last `v` line (v 468) moved to the end of the file: faces using it come before it.
+    let text = mediapipe_text();
+    let lines: Vec<&str> = text.lines().collect();
+    let last_v = lines.iter().rposition(|l| l.starts_with("v ")).unwrap();
+    let mut moved: Vec<&str> = lines.clone();
+    let v = moved.remove(last_v);
+    moved.push(v);
+    let moved = moved.join("\n");
+    let first_use = moved
+        .lines()
+        .position(|l| l.starts_with("f ") && l.split_whitespace().any(|c| c == "468"))
+        .unwrap()
+        + 1;
+    match FaceMesh::from_obj_str(&moved) {
+        Err(
+            e @ PrepError::ObjLine(ObjLineError::UndefinedCorner {
+                statement: "v",
+                defined: 467,
+                ..
+            }),
+        ) => assert_eq!(
+            e.to_string(),
+            format!(
+                "OBJ line {first_use}: face corner \"468\" refers to a `v` line that does not \
+                 come before the face (there are 467 above it)"
+            )
+        ),
+        other => panic!("expected a forward reference, got {other:?}"),
+    }
+}
+
+#[test]
+fn obj_texture_coordinate_or_normal_defined_after_its_face_is_refused_at_read() {
+    // All `vt` lines moved after the faces.
+    let text = mediapipe_with_texcoords_and_normals(|lines| {
+        let vt: Vec<String> = lines
+            .iter()
+            .filter(|l| l.starts_with("vt "))
+            .cloned()
+            .collect();
+        lines.retain(|l| !l.starts_with("vt "));
+        lines.extend(vt);
+    });
+    assert!(matches!(
+        FaceMesh::from_obj_str(&text),
+        Err(PrepError::ObjLine(ObjLineError::UndefinedCorner {
+            statement: "vt",
+            defined: 0,
+            ..
+        }))
+    ));
+    // A normal index past the `vn` lines (tobj alone would only see it at the end).
+    let text = mediapipe_with_texcoords_and_normals(|lines| {
+        let i = lines.iter().position(|l| l.starts_with("f ")).unwrap();
+        lines[i] = "f 1/1/1 2/2/2 3/3/469".to_owned();
+    });
+    assert!(matches!(
+        FaceMesh::from_obj_str(&text),
+        Err(PrepError::ObjLine(ObjLineError::UndefinedCorner {
+            statement: "vn",
+            defined: 468,
+            ..
+        }))
+    ));
 }

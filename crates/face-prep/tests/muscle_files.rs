@@ -128,6 +128,100 @@ fn errors_carry_line_numbers() {
 }
 
 #[test]
+fn muscle_file_with_duplicate_names_is_refused() {
+    // The same custom name twice, and two names of one standard muscle (display name and id):
+    // their sliders and morph targets would share a name.
+    let cases = [
+        (
+            "[Name]\nm\n[Size]\n1\n[Data]\n0\n[Name]\nm\n[Size]\n1\n[Data]\n1\n",
+            8,
+            2,
+            "m",
+        ),
+        (
+            "[Name]\nFrontalis L\n[Size]\n1\n[Data]\n0\n\n[Name]\nfrontalis_l\n[Size]\n0\n[Data]\n",
+            9,
+            2,
+            "frontalis_l",
+        ),
+    ];
+    for (text, line, first, id) in cases {
+        match muscle_file::read_str(text, 10) {
+            Err(
+                e @ MuscleFileError::DuplicateName {
+                    line: l,
+                    first_line: f,
+                    ..
+                },
+            ) => {
+                assert_eq!((l, f), (line, first), "{e}");
+                assert!(e.to_string().contains(&format!("both are {id:?}")), "{e}");
+                assert!(e.to_string().contains("muscle names must be unique"), "{e}");
+            }
+            other => panic!("{text:?}: expected a duplicate name, got {other:?}"),
+        }
+    }
+    // Names differing in case are different custom muscles.
+    assert_eq!(
+        muscle_file::read_str(
+            "[Name]\nm\n[Size]\n0\n[Data]\n[Name]\nM\n[Size]\n0\n[Data]\n",
+            10
+        )
+        .unwrap()
+        .len(),
+        2
+    );
+}
+
+#[test]
+fn rig_with_duplicate_muscle_ids_is_refused() {
+    let rig = rig();
+    let mut muscles = rig.muscles.clone();
+    muscles[3].name = muscles[1].name.clone();
+    muscles[3].kind = muscles[1].kind;
+    let id = muscles[1].id().to_owned();
+    match rig.clone().with_muscles(muscles) {
+        Err(e @ PrepError::DuplicateMuscle(_)) => {
+            assert_eq!(
+                e.to_string(),
+                format!("two muscles are named {id:?} (muscle names must be unique)")
+            );
+        }
+        other => panic!("expected a duplicate muscle, got {other:?}"),
+    }
+}
+
+#[test]
+fn muscle_file_with_unwritable_name_is_refused() {
+    // A carriage return inside a name: `to_string` could not write it back.
+    let err = muscle_file::read_str("[Name]\na\rb\n[Size]\n0\n[Data]\n", 10).unwrap_err();
+    assert!(
+        matches!(err, MuscleFileError::Unexpected { line: 2, .. }),
+        "{err}"
+    );
+}
+
+#[test]
+fn muscle_file_with_utf8_bom_is_read() {
+    let text = "[Name]\nZygomaticus major R\n[Size]\n2\n[Data]\n5\n7\n";
+    let plain = muscle_file::read_str(text, 10).unwrap();
+    let with_bom = muscle_file::read_str(&format!("\u{feff}{text}"), 10).unwrap();
+    assert_eq!(with_bom, plain);
+    assert_eq!(with_bom[0].kind, Some(MuscleKind::ZygomaticusMajorR));
+    // From a file too, with CRLF line ends; line numbers still count from the first line.
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("bom.muscles");
+    std::fs::write(&path, format!("\u{feff}{}", text.replace('\n', "\r\n"))).unwrap();
+    assert_eq!(muscle_file::load(&path, 10).unwrap(), plain);
+    let bad = format!("\u{feff}{text}[Name]\nx\n[Size]\n1\n[Data]\n99\n");
+    let err = muscle_file::read_str(&bad, 10).unwrap_err();
+    assert!(
+        matches!(err, MuscleFileError::IndexOutOfRange { line: 13, .. }),
+        "{err}"
+    );
+}
+
+#[test]
 fn edited_muscles_are_checked_against_the_rig() {
     let rig = rig();
     let mut muscles = rig.muscles.clone();

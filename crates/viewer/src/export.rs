@@ -103,7 +103,7 @@ pub fn write_export(kind: ExportKind, request: &ExportRequest) -> Result<PathBuf
                     mesh,
                     ..
                 }) => facebem::export::obj::pose_from_template(obj, &mesh.input_to_vertex, &posed)?,
-                _ => facebem::export::obj::plain_obj(&posed, &request.basis.triangles),
+                _ => facebem::export::obj::plain_obj(&posed, &request.basis.triangles)?,
             };
             facebem::write_atomic(&path, text.as_bytes())?;
             path

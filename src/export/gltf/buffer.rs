@@ -67,8 +67,13 @@ impl Builder {
         Ok(self.accessors.len() - 1)
     }
 
-    /// A VEC2 float accessor (texture coordinates).
-    pub(super) fn vec2_accessor(&mut self, data: &[[f32; 2]]) -> usize {
+    /// A VEC2 float accessor (texture coordinates); a NaN or infinity is an error.
+    pub(super) fn vec2_accessor(
+        &mut self,
+        what: &str,
+        data: &[[f32; 2]],
+    ) -> Result<usize, GltfExportError> {
+        check_finite(what, data.iter().map(|t| t.iter().all(|c| c.is_finite())))?;
         let bytes: Vec<u8> = data
             .iter()
             .flatten()
@@ -78,7 +83,7 @@ impl Builder {
         self.accessors.push(json!({
             "bufferView": view, "componentType": FLOAT, "count": data.len(), "type": "VEC2",
         }));
-        self.accessors.len() - 1
+        Ok(self.accessors.len() - 1)
     }
 
     pub(super) fn indices_accessor(&mut self, triangles: &[[u32; 3]]) -> usize {
@@ -95,7 +100,14 @@ impl Builder {
         self.accessors.len() - 1
     }
 
-    pub(super) fn scalar_accessor(&mut self, data: &[f32], with_bounds: bool) -> usize {
+    /// A SCALAR float accessor (animation times and weights); a NaN or infinity is an error.
+    pub(super) fn scalar_accessor(
+        &mut self,
+        what: &str,
+        data: &[f32],
+        with_bounds: bool,
+    ) -> Result<usize, GltfExportError> {
+        check_finite(what, data.iter().map(|x| x.is_finite()))?;
         let bytes: Vec<u8> = data.iter().flat_map(|x| x.to_le_bytes()).collect();
         let view = self.view(&bytes, None);
         let mut a = json!({
@@ -108,7 +120,20 @@ impl Builder {
             a["max"] = json!([max]);
         }
         self.accessors.push(a);
-        self.accessors.len() - 1
+        Ok(self.accessors.len() - 1)
+    }
+}
+
+/// `Err(GltfExportError::NonFinite)` naming the first element of `what` that is not finite
+/// (`finite`: per element, whether all its components are).
+fn check_finite(what: &str, finite: impl Iterator<Item = bool>) -> Result<(), GltfExportError> {
+    let mut finite = finite;
+    match finite.position(|ok| !ok) {
+        Some(vertex) => Err(GltfExportError::NonFinite {
+            what: what.to_string(),
+            vertex,
+        }),
+        None => Ok(()),
     }
 }
 
@@ -157,6 +182,35 @@ pub(super) fn base64(bytes: &[u8]) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn accessors_refuse_non_finite_numbers() {
+        let mut b = Builder::default();
+        let err = b
+            .vec2_accessor("texture coordinates", &[[0.0, 1.0], [f32::NAN, 0.5]])
+            .unwrap_err();
+        assert!(
+            matches!(&err, GltfExportError::NonFinite { what, vertex: 1 } if what == "texture coordinates"),
+            "{err}"
+        );
+        let err = b
+            .scalar_accessor("times", &[0.0, f32::INFINITY], true)
+            .unwrap_err();
+        assert!(
+            matches!(err, GltfExportError::NonFinite { vertex: 1, .. }),
+            "{err}"
+        );
+        let err = b
+            .vec3_accessor("normals", &[DVec3::new(0.0, 0.0, f64::NAN)], false)
+            .unwrap_err();
+        assert!(
+            matches!(err, GltfExportError::NonFinite { vertex: 0, .. }),
+            "{err}"
+        );
+        // Nothing was written by the refused calls.
+        assert!(b.bin.is_empty() && b.accessors.is_empty());
+        assert_eq!(b.vec2_accessor("uv", &[[0.25, 0.5]]).unwrap(), 0);
+    }
 
     #[test]
     fn base64_matches_rfc4648_vectors() {

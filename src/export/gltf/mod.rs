@@ -138,16 +138,18 @@ pub enum GltfExportError {
         /// Vectors found.
         got: usize,
     },
-    /// A position or displacement is not finite once converted to f32.
-    #[error("vertex {vertex} of {what} is not finite in f32")]
+    /// A number to write is NaN or infinite once converted to f32 (glTF's float): a position,
+    /// normal, texture coordinate, displacement or animation value.
+    #[error("element {vertex} of {what} is not finite in f32")]
     NonFinite {
-        /// Which field (`neutral`, a target name).
+        /// Which field (`neutral`, `texture coordinates`, a target name, `animation times`).
         what: String,
-        /// Vertex index.
+        /// Element (vertex) index.
         vertex: usize,
     },
-    /// The seconds per keyframe are not a positive finite number.
-    #[error("seconds per keyframe must be positive and finite, got {0}")]
+    /// The seconds per keyframe are not a positive finite number (twice it too: the clips'
+    /// last keyframe).
+    #[error("seconds per keyframe must be positive and finite (twice it too), got {0}")]
     BadKeyframeTime(f32),
     /// The metres per input unit are not a positive finite number.
     #[error("metres per unit must be positive and finite, got {0}")]
@@ -158,7 +160,27 @@ pub enum GltfExportError {
     /// Two morph targets would have the same name (e.g. a muscle file naming two muscles alike).
     #[error("two morph targets are named {0:?}")]
     DuplicateTarget(String),
+    /// The morph targets would make the file larger than [`MAX_EXPORT_BYTES`].
+    #[error(
+        "the glTF would be about {} MiB ({targets} morph targets x {vertices} vertices), over the {} MiB limit; export fewer names (--names arkit) or simplify the face mesh",
+        bytes >> 20,
+        MAX_EXPORT_BYTES >> 20
+    )]
+    TooLarge {
+        /// Estimated size in bytes.
+        bytes: u64,
+        /// Morph targets asked for.
+        targets: usize,
+        /// glTF vertices.
+        vertices: usize,
+    },
 }
+
+/// Largest glTF export written (1 GiB), checked from the target and vertex counts before any
+/// target is built. Regression (issue 36): a 1.18 M-triangle face's export was 2.0 GB and took
+/// 6.6 GB of memory; three.js and Blender load files up to this size in a few seconds per
+/// hundred MB, and a GLB cannot exceed 4 GiB at all.
+pub const MAX_EXPORT_BYTES: u64 = 1 << 30;
 
 /// Builds the glTF file (bytes of a `.glb`, or UTF-8 JSON of a `.gltf`) for `basis`, with its
 /// welded vertices in order ([`ExportLayout::welded`]).
@@ -199,6 +221,19 @@ pub fn export_gltf_layout(
         partial,
         left_out,
     } = morph_targets(basis, params)?;
+    // A POSITION and a NORMAL delta (3 f32 each) per vertex per target, plus the neutral
+    // attributes and the indices.
+    let vertices = layout.len();
+    let bytes = (vertices as u64)
+        .saturating_mul(24 * targets.len() as u64 + 32)
+        .saturating_add(12 * basis.triangles.len() as u64);
+    if bytes > MAX_EXPORT_BYTES {
+        return Err(GltfExportError::TooLarge {
+            bytes,
+            targets: targets.len(),
+            vertices,
+        });
+    }
     let target_json = target_accessors(&mut b, basis, layout, &targets, &neutral_normals, scale)?;
     let names: Vec<&str> = targets.iter().map(|(n, _)| n.as_str()).collect();
     let extras = mesh_extras(&names, left_out, partial, layout);
@@ -209,7 +244,7 @@ pub fn export_gltf_layout(
         root["meshes"][0]["weights"] = json!(vec![0.0; targets.len()]);
     }
     if params.animation && !clip_targets.is_empty() {
-        root["animations"] = animations(&mut b, params, &clip_targets, targets.len());
+        root["animations"] = animations(&mut b, params, &clip_targets, targets.len())?;
     }
     Ok(finish(b, root, params.format))
 }
@@ -240,7 +275,7 @@ fn neutral_accessors(
     let normal = b.vec3_accessor("neutral normals", &normals, false)?;
     let mut attributes = json!({ "POSITION": position, "NORMAL": normal });
     if let Some(uvs) = &layout.uvs {
-        attributes["TEXCOORD_0"] = json!(b.vec2_accessor(uvs));
+        attributes["TEXCOORD_0"] = json!(b.vec2_accessor("texture coordinates", uvs)?);
     }
     let indices = b.indices_accessor(&layout.triangles);
     Ok((attributes, indices))
@@ -317,22 +352,22 @@ fn animations(
     params: &GltfParams,
     clip_targets: &[(String, usize)],
     target_count: usize,
-) -> Value {
+) -> Result<Value, GltfExportError> {
     let s = params.seconds_per_keyframe;
-    let input = b.scalar_accessor(&[0.0, s, 2.0 * s], true);
+    let input = b.scalar_accessor("animation times", &[0.0, s, 2.0 * s], true)?;
     let mut clips = Vec::new();
     for (name, t) in clip_targets {
         let t = *t;
         let mut weights = vec![0.0f32; 3 * target_count];
         weights[target_count + t] = 1.0;
-        let output = b.scalar_accessor(&weights, false);
+        let output = b.scalar_accessor(&format!("animation {name} weights"), &weights, false)?;
         clips.push(json!({
             "name": name,
             "samplers": [{ "input": input, "output": output, "interpolation": "LINEAR" }],
             "channels": [{ "sampler": 0, "target": { "node": 0, "path": "weights" } }],
         }));
     }
-    Value::Array(clips)
+    Ok(Value::Array(clips))
 }
 
 /// Pads the buffer, adds the buffer views, accessors and buffer to `root` and writes the file
@@ -379,7 +414,9 @@ fn check(
             triangles: basis.triangles.len(),
         });
     }
-    if !(params.seconds_per_keyframe.is_finite() && params.seconds_per_keyframe > 0.0) {
+    let s = params.seconds_per_keyframe;
+    // The clips' last keyframe is at 2 s.
+    if !((2.0 * s).is_finite() && s > 0.0) {
         return Err(GltfExportError::BadKeyframeTime(
             params.seconds_per_keyframe,
         ));
@@ -475,5 +512,45 @@ mod tests {
             export_gltf(&basis, &p),
             Err(GltfExportError::NonFinite { vertex: 2, .. })
         ));
+    }
+
+    /// Regression (issue 36, part 7): a 1.18 M-triangle face exported a 2.0 GB GLB using
+    /// 6.6 GB of memory. Above [`MAX_EXPORT_BYTES`] the export is refused from the counts,
+    /// before any target is built; here 37 muscles' 139 targets over 400 000 glTF vertices
+    /// (all but three of them positions no face uses, so the test itself stays small).
+    #[test]
+    fn an_export_over_the_size_limit_is_refused_before_building_it() {
+        let ids: Vec<String> = face_prep::MuscleKind::ALL
+            .iter()
+            .map(|k| k.id().to_string())
+            .collect();
+        let basis = MuscleBasis {
+            displacements: vec![vec![DVec3::ZERO; 3]; ids.len()],
+            muscle_ids: ids,
+            neutral: vec![DVec3::ZERO, DVec3::X, DVec3::Y],
+            triangles: vec![[0, 1, 2]],
+        };
+        let mut layout = ExportLayout::welded(&basis.neutral, &basis.triangles);
+        let unused = 400_000;
+        layout.welded.extend(std::iter::repeat_n(None, unused));
+        layout
+            .positions
+            .extend(std::iter::repeat_n(DVec3::Z, unused));
+        layout.input_index.extend(3..3 + unused as u32);
+        layout.input_count += unused;
+        match export_gltf_layout(&basis, &layout, &GltfParams::default()) {
+            Err(GltfExportError::TooLarge {
+                bytes,
+                targets,
+                vertices,
+            }) => {
+                assert_eq!(vertices, unused + 3);
+                assert!(targets > 100, "{targets}");
+                assert!(bytes > MAX_EXPORT_BYTES, "{bytes}");
+            }
+            other => panic!("{:?}", other.map(|b| b.len())),
+        }
+        // The same basis on its three vertices exports.
+        assert!(export_gltf(&basis, &GltfParams::default()).is_ok());
     }
 }

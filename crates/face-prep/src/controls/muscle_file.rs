@@ -21,9 +21,12 @@
 //!
 //! `[Data]` is the front chain in order from start to end. The `[BackSize]`/`[BackData]` pair is
 //! this project's extension for the back chain; it is optional when reading, so thesis files
-//! (front chain only) load unchanged. Blank lines between blocks are ignored. The name of a
-//! standard muscle (display name such as "Frontalis L", or id such as `frontalis_l`) sets
-//! [`Muscle::kind`]; any other name gives a custom muscle.
+//! (front chain only) load unchanged. Blank lines between blocks are ignored, and so is a UTF-8
+//! byte order mark at the start. The name of a standard muscle (display name such as
+//! "Frontalis L", or id such as `frontalis_l`) sets [`Muscle::kind`]; any other name gives a
+//! custom muscle. The whole file is checked when read: names are unique ([`Muscle::id`]: two
+//! names of one standard muscle are the same muscle) and writable, sizes match the lists, and
+//! elements exist and appear once per chain.
 //!
 //! ```
 //! use face_prep::{Muscle, muscle_file};
@@ -37,7 +40,7 @@
 use crate::controls::muscle_kind::MuscleKind;
 use crate::controls::muscles::Muscle;
 use crate::error::MuscleFileError;
-use std::collections::HashSet;
+use std::collections::{HashMap, HashSet};
 use std::io::{Read, Write};
 use std::path::Path;
 
@@ -104,6 +107,32 @@ fn expect_header(
             line: lines.last_line(),
             muscle: muscle.to_owned(),
             missing,
+        }),
+    }
+}
+
+/// Whether [`to_string`] can write `name` (and read it back unchanged): not empty, no leading
+/// or trailing whitespace, no line break, not starting with `[`.
+fn writable_name(name: &str) -> bool {
+    !name.is_empty()
+        && !name.starts_with('[')
+        && !name.contains(['\n', '\r'])
+        && name.trim() == name
+}
+
+/// Reads the name after a `[Name]` header (a writable one, [`writable_name`]).
+fn read_name(lines: &mut Lines) -> Result<(usize, String), MuscleFileError> {
+    match lines.next_nonblank() {
+        Some((line, n)) if !writable_name(n) => Err(MuscleFileError::Unexpected {
+            line,
+            text: n.to_owned(),
+            expected: "a muscle name (on one line, not starting with '[')",
+        }),
+        Some((line, n)) => Ok((line, n.to_owned())),
+        None => Err(MuscleFileError::Truncated {
+            line: lines.last_line(),
+            muscle: String::new(),
+            missing: "the name",
         }),
     }
 }
@@ -213,8 +242,11 @@ pub fn read_str_with_limits(
     element_count: usize,
     limits: &crate::InputLimits,
 ) -> Result<Vec<Muscle>, MuscleFileError> {
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let mut lines = Lines::new(text);
     let mut muscles = Vec::new();
+    // Line of the name of the muscle of each id read so far.
+    let mut first_line: HashMap<String, usize> = HashMap::new();
     let max_muscles = limits.max_muscles;
     while let Some((line, l)) = lines.next_nonblank() {
         if muscles.len() >= max_muscles {
@@ -230,23 +262,19 @@ pub fn read_str_with_limits(
                 expected: "[Name]",
             });
         }
-        let name = match lines.next_nonblank() {
-            Some((line, n)) if n.starts_with('[') => {
-                return Err(MuscleFileError::Unexpected {
-                    line,
-                    text: n.to_owned(),
-                    expected: "a muscle name",
-                });
-            }
-            Some((_, n)) => n.to_owned(),
-            None => {
-                return Err(MuscleFileError::Truncated {
-                    line: lines.last_line(),
-                    muscle: String::new(),
-                    missing: "the name",
-                });
-            }
-        };
+        let (name_line, name) = read_name(&mut lines)?;
+        let kind = kind_from_name(&name);
+        // `Muscle::id` of the muscle being read.
+        let id = kind.map_or_else(|| name.clone(), |k| k.id().to_owned());
+        if let Some(&first) = first_line.get(&id) {
+            return Err(MuscleFileError::DuplicateName {
+                line: name_line,
+                name,
+                id,
+                first_line: first,
+            });
+        }
+        first_line.insert(id, name_line);
         expect_header(&mut lines, "[Size]", &name, "[Size]")?;
         let front_chain = read_chain(&mut lines, &name, "[Data]", element_count)?;
         let back_chain = match lines.peek_nonblank() {
@@ -257,7 +285,7 @@ pub fn read_str_with_limits(
             _ => Vec::new(),
         };
         muscles.push(Muscle {
-            kind: kind_from_name(&name),
+            kind,
             name,
             front_chain,
             back_chain,
@@ -295,9 +323,8 @@ pub fn to_string(muscles: &[Muscle]) -> Result<String, MuscleFileError> {
     use std::fmt::Write as _;
     let mut s = String::new();
     for m in muscles {
-        let name = m.name.trim();
-        if name.is_empty() || name.starts_with('[') || name.contains(['\n', '\r']) || name != m.name
-        {
+        let name = m.name.as_str();
+        if !writable_name(name) {
             return Err(MuscleFileError::BadName(m.name.clone()));
         }
         let _ = writeln!(s, "[Name]\n{name}\n[Size]\n{}\n[Data]", m.front_chain.len());

@@ -26,6 +26,23 @@ pub struct Muscle {
 }
 
 impl Muscle {
+    /// The muscle's id: its standard id when it is a standard muscle ([`MuscleKind::id`],
+    /// whatever name denotes it), else its name. Sliders and morph targets are named by it, so
+    /// the muscles of a rig have distinct ids.
+    ///
+    /// ```
+    /// use face_prep::{Muscle, MuscleKind};
+    /// let m = |name: &str, kind| Muscle { name: name.into(), kind, front_chain: vec![], back_chain: vec![] };
+    /// assert_eq!(m("Frontalis L", Some(MuscleKind::FrontalisL)).id(), "frontalis_l");
+    /// assert_eq!(m("my muscle", None).id(), "my muscle");
+    /// ```
+    pub fn id(&self) -> &str {
+        match self.kind {
+            Some(k) => k.id(),
+            None => &self.name,
+        }
+    }
+
     /// All elements of the muscle, front chain then back chain.
     pub fn elements(&self) -> impl Iterator<Item = u32> + '_ {
         self.front_chain.iter().chain(&self.back_chain).copied()

@@ -4,14 +4,15 @@ use crate::error::PrepError;
 use crate::frame::topology;
 use crate::input::gltf_read::{self, Document};
 use crate::input::limits::{InputLimits, MAX_COORDINATE, read_input_file};
+use crate::input::obj_text;
 use glam::{DMat4, DVec3};
 use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
 use std::io::BufRead;
 use std::path::Path;
 
-/// One front-face triangle mesh in the user's INPUT frame: welded (coincident positions merged),
-/// triangulated, unused vertices dropped, and validated (one connected, edge-manifold,
+/// One front-face triangle mesh in the user's INPUT frame: welded (positions within
+/// [`WELD_RELATIVE_TOLERANCE`] of the diagonal merged), triangulated, unused vertices dropped, and validated (one connected, edge-manifold,
 /// consistently wound surface with exactly four boundary loops).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct FaceMesh {
@@ -42,19 +43,72 @@ fn check_coordinates(input_index: usize, p: DVec3) -> Result<(), PrepError> {
     Ok(())
 }
 
-/// Bit pattern of a position, with −0.0 folded onto +0.0, for exact welding.
-fn weld_key(p: DVec3) -> [u64; 3] {
-    p.to_array()
-        .map(|c| if c == 0.0 { 0u64 } else { c.to_bits() })
+/// Positions closer than this fraction of the used positions' bounding-box diagonal are one
+/// vertex (0.2 nm on a 20 cm face: far below any modelled feature, far above rounding).
+/// Regression (issue 36): vertices 1e-12 apart (a mesh exported with a float round trip
+/// between its parts) were not welded and the face was refused as "non-manifold vertex".
+pub const WELD_RELATIVE_TOLERANCE: f64 = 1e-9;
+
+/// A uniform grid of welded vertices with cells of the weld tolerance: a position's welded
+/// vertex, if any, is within the tolerance and so in its cell or a neighbouring one.
+struct WeldGrid {
+    tolerance: f64,
+    cells: HashMap<[i64; 3], Vec<u32>>,
+}
+
+impl WeldGrid {
+    fn cell(&self, p: DVec3) -> [i64; 3] {
+        // `as` saturates: on a degenerate scale every position shares a cell, still correct.
+        (p / self.tolerance).floor().to_array().map(|c| c as i64)
+    }
+
+    /// The first welded vertex within the tolerance of `p`.
+    fn find(&self, vertices: &[DVec3], p: DVec3) -> Option<u32> {
+        let c = self.cell(p);
+        let mut best: Option<(f64, u32)> = None;
+        for dx in -1..=1i64 {
+            for dy in -1..=1i64 {
+                for dz in -1..=1i64 {
+                    let key = [
+                        c[0].wrapping_add(dx),
+                        c[1].wrapping_add(dy),
+                        c[2].wrapping_add(dz),
+                    ];
+                    for &v in self.cells.get(&key).into_iter().flatten() {
+                        let d = vertices[v as usize].distance(p);
+                        if d <= self.tolerance && best.is_none_or(|(bd, bv)| (d, v) < (bd, bv)) {
+                            best = Some((d, v));
+                        }
+                    }
+                }
+            }
+        }
+        best.map(|(_, v)| v)
+    }
+
+    fn insert(&mut self, p: DVec3, v: u32) {
+        let c = self.cell(p);
+        self.cells.entry(c).or_default().push(v);
+    }
 }
 
 struct Welded {
     vertices: Vec<DVec3>,
     triangles: Vec<[u32; 3]>,
-    by_key: HashMap<[u64; 3], u32>,
+    grid: WeldGrid,
 }
 
-/// Merges bit-identical positions among those used by `triangles` and drops unused ones.
+impl Welded {
+    /// The welded vertex an input position became (`None`: no used position within the
+    /// tolerance).
+    fn vertex_of(&self, p: DVec3) -> Option<u32> {
+        self.grid.find(&self.vertices, p)
+    }
+}
+
+/// Merges positions used by `triangles` that lie within [`WELD_RELATIVE_TOLERANCE`] of the
+/// bounding-box diagonal of each other (the first in input order is kept) and drops unused
+/// ones.
 fn weld(positions: &[DVec3], triangles: &[[u32; 3]]) -> Result<Welded, PrepError> {
     let mut used = vec![false; positions.len()];
     for (t, tri) in triangles.iter().enumerate() {
@@ -71,18 +125,41 @@ fn weld(positions: &[DVec3], triangles: &[[u32; 3]]) -> Result<Welded, PrepError
             }
         }
     }
-    let mut by_key = HashMap::new();
+    for (i, &p) in positions.iter().enumerate().filter(|(i, _)| used[*i]) {
+        check_coordinates(i, p)?;
+    }
+    let (lo, hi) = topology::bounding_box(
+        positions
+            .iter()
+            .enumerate()
+            .filter(|(i, _)| used[*i])
+            .map(|(_, &p)| p),
+    );
+    let diagonal = (hi - lo).length();
+    let tolerance = if diagonal.is_finite() && diagonal > 0.0 {
+        WELD_RELATIVE_TOLERANCE * diagonal
+    } else {
+        f64::MIN_POSITIVE
+    };
+    let mut grid = WeldGrid {
+        tolerance,
+        cells: HashMap::new(),
+    };
     let mut vertices = Vec::new();
     let mut remap = vec![u32::MAX; positions.len()];
     for (i, &p) in positions.iter().enumerate() {
         if !used[i] {
             continue;
         }
-        check_coordinates(i, p)?;
-        let id = *by_key.entry(weld_key(p)).or_insert_with(|| {
-            vertices.push(p);
-            (vertices.len() - 1) as u32
-        });
+        let id = match grid.find(&vertices, p) {
+            Some(v) => v,
+            None => {
+                vertices.push(p);
+                let v = (vertices.len() - 1) as u32;
+                grid.insert(p, v);
+                v
+            }
+        };
         remap[i] = id;
     }
     let triangles = triangles
@@ -92,7 +169,7 @@ fn weld(positions: &[DVec3], triangles: &[[u32; 3]]) -> Result<Welded, PrepError
     Ok(Welded {
         vertices,
         triangles,
-        by_key,
+        grid,
     })
 }
 
@@ -115,10 +192,7 @@ impl FaceMesh {
         limits.check_count("positions", positions.len() as u64, limits.max_positions)?;
         limits.check_count("triangles", triangles.len() as u64, limits.max_triangles)?;
         let w = weld(positions, triangles)?;
-        let input_to_vertex = positions
-            .iter()
-            .map(|&p| w.by_key.get(&weld_key(p)).copied())
-            .collect();
+        let input_to_vertex = positions.iter().map(|&p| w.vertex_of(p)).collect();
         FaceMesh::validated(w.vertices, w.triangles, input_to_vertex)
     }
 
@@ -137,7 +211,9 @@ impl FaceMesh {
     }
 
     /// Parses OBJ text (tobj, multi-index mode so seams are not split, n-gons fan-triangulated),
-    /// welds, validates.
+    /// welds, validates. The whole text is held to the rules of [`crate::obj_text`] too (finite
+    /// numbers, non-zero w, face corners referring only to lines above the face), so the
+    /// exports, which read the text again, accept whatever this accepts.
     ///
     /// ```
     /// let obj = std::fs::read_to_string(concat!(
@@ -173,6 +249,9 @@ impl FaceMesh {
     pub fn from_obj_bytes(bytes: &[u8], limits: &InputLimits) -> Result<FaceMesh, PrepError> {
         limits.check_file_bytes(bytes.len() as u64)?;
         let text = String::from_utf8_lossy(bytes);
+        // First the rules the exports read the text by (their errors name the line); positions
+        // in file order, parsed as tobj does.
+        let file_positions = obj_text::checked_positions(&text, limits)?;
         let options = tobj::LoadOptions {
             single_index: false,
             triangulate: true,
@@ -205,16 +284,11 @@ impl FaceMesh {
                     .map(|c| [c[0] + base, c[1] + base, c[2] + base]),
             );
         }
-        // NaN check in file order so the message names the `v` line's index.
-        let file_positions = scan_obj_positions(&text);
         for (i, p) in file_positions.iter().enumerate() {
             check_coordinates(i, *p)?;
         }
         let w = weld(&positions, &triangles)?;
-        let input_to_vertex = file_positions
-            .iter()
-            .map(|&p| w.by_key.get(&weld_key(p)).copied())
-            .collect();
+        let input_to_vertex = file_positions.iter().map(|&p| w.vertex_of(p)).collect();
         FaceMesh::validated(w.vertices, w.triangles, input_to_vertex)
     }
 
@@ -235,28 +309,6 @@ impl FaceMesh {
     ) -> Result<FaceMesh, PrepError> {
         gltf_mesh(bytes, folder, mesh_name, limits)
     }
-}
-
-/// Positions of the `v` lines of an OBJ text in file order, parsed as tobj does (f64, optional
-/// w divides). Lines tobj would reject never reach this function's caller.
-fn scan_obj_positions(text: &str) -> Vec<DVec3> {
-    let mut out = Vec::new();
-    for line in text.lines() {
-        let mut words = line.split_whitespace();
-        if words.next() != Some("v") {
-            continue;
-        }
-        let nums: Vec<f64> = words.map_while(|w| w.parse::<f64>().ok()).collect();
-        if nums.len() < 3 {
-            continue;
-        }
-        let mut p = DVec3::new(nums[0], nums[1], nums[2]);
-        if nums.len() == 4 && nums[3] != 0.0 {
-            p /= nums[3];
-        }
-        out.push(p);
-    }
-    out
 }
 
 /// The vertices of a glTF face mesh as the file has them (before welding): every primitive's
@@ -304,10 +356,14 @@ pub fn gltf_face_data(
         let pos = pos.ok_or_else(|| err("no POSITION attribute"))?;
         let base = positions.len() as u32;
         let pos: Vec<DVec3> = doc
-            .read_vec3(pos)?
+            .read_vec3(pos, "POSITION")?
             .into_iter()
             .map(|p| world.transform_point3(p))
             .collect();
+        // Every position, used or not (the exports write them all), in the world frame.
+        for (i, p) in pos.iter().enumerate() {
+            check_coordinates(positions.len() + i, *p)?;
+        }
         let n = pos.len() as u32;
         limits.check_count(
             "positions",
@@ -321,7 +377,7 @@ pub fn gltf_face_data(
         }
         uvs.resize(end, None);
         if let Some(a) = gltf_read::attribute(&doc.root, mesh, pi, Semantic::Normals) {
-            let read = doc.read_vec3(a)?;
+            let read = doc.read_vec3(a, "NORMAL")?;
             normals.extend(
                 read.into_iter()
                     .map(|n| (normal_matrix * n).try_normalize()),

@@ -97,9 +97,36 @@ impl LengthUnit {
 impl std::fmt::Display for LengthUnit {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
-            LengthUnit::Scaled(mm) => write!(f, "model units (1 unit = {mm:.3} mm)"),
+            // Four significant digits at any scale: a face written in micrometres-of-a-
+            // millimetre showed "1 unit = 0.000 mm" (issue 36).
+            LengthUnit::Scaled(mm) if (0.1..1e6).contains(&mm.abs()) => {
+                write!(f, "model units (1 unit = {mm:.3} mm)")
+            }
+            LengthUnit::Scaled(mm) => write!(f, "model units (1 unit = {mm:.3e} mm)"),
             u => f.write_str(u.symbol()),
         }
+    }
+}
+
+#[cfg(test)]
+mod display_tests {
+    use super::LengthUnit;
+
+    /// Regression (issue 36): `info` on a face scaled by 1e6 said "1 unit = 0.000 mm".
+    #[test]
+    fn tiny_and_huge_model_units_keep_their_digits() {
+        assert_eq!(
+            LengthUnit::Scaled(6.3e-5).to_string(),
+            "model units (1 unit = 6.300e-5 mm)"
+        );
+        assert_eq!(
+            LengthUnit::Scaled(2.5e7).to_string(),
+            "model units (1 unit = 2.500e7 mm)"
+        );
+        assert_eq!(
+            LengthUnit::Scaled(0.254).to_string(),
+            "model units (1 unit = 0.254 mm)"
+        );
     }
 }
 

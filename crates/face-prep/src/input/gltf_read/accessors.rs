@@ -1,5 +1,6 @@
-//! Accessors: POSITION, TEXCOORD and index data, every count, offset and stride checked
-//! against its buffer view and buffer before it is read; sparse substitution.
+//! Accessors: POSITION, NORMAL, TEXCOORD and index data, every count, offset and stride checked
+//! against its buffer view and buffer before it is read; sparse substitution; every float
+//! finite.
 
 use glam::DVec3;
 use gltf::json;
@@ -9,20 +10,26 @@ use super::document::{Document, invalid};
 use crate::error::GltfError;
 
 impl Document {
-    /// Reads a FLOAT VEC3 accessor (POSITION) as f64 points.
-    pub(crate) fn read_vec3(&mut self, index: usize) -> Result<Vec<DVec3>, GltfError> {
+    /// Reads a FLOAT VEC3 accessor (`attribute`: POSITION or NORMAL) as f64 points, every
+    /// component finite.
+    pub(crate) fn read_vec3(
+        &mut self,
+        index: usize,
+        attribute: &'static str,
+    ) -> Result<Vec<DVec3>, GltfError> {
         let (acc, comp) = self.accessor_layout(index, self.limits.max_positions)?;
         if acc.mult != 3 || comp != json::accessor::ComponentType::F32 {
             return Err(invalid(
                 "accessor",
                 index,
                 format!(
-                    "POSITION must be FLOAT VEC3, found {comp:?} with {} components",
+                    "{attribute} must be FLOAT VEC3, found {comp:?} with {} components",
                     acc.mult
                 ),
             ));
         }
         let values = self.read_components(index, &acc, comp)?;
+        check_finite(&values, 3, index, attribute)?;
         Ok(values
             .chunks_exact(3)
             .map(|c| DVec3::new(c[0], c[1], c[2]))
@@ -52,6 +59,7 @@ impl Document {
             ));
         }
         let values = self.read_components(index, &acc, comp)?;
+        check_finite(&values, 2, index, "TEXCOORD_0")?;
         Ok(values
             .chunks_exact(2)
             .map(|c| [(c[0] * scale) as f32, (c[1] * scale) as f32])
@@ -235,6 +243,24 @@ impl Document {
                 ),
             )),
         }
+    }
+}
+
+/// `Err(GltfError::NonFinite)` naming the first element (of `mult` components) of accessor
+/// `accessor` with a NaN or infinite component.
+fn check_finite(
+    values: &[f64],
+    mult: usize,
+    accessor: usize,
+    attribute: &'static str,
+) -> Result<(), GltfError> {
+    match values.iter().position(|x| !x.is_finite()) {
+        Some(i) => Err(GltfError::NonFinite {
+            accessor,
+            attribute,
+            element: i / mult,
+        }),
+        None => Ok(()),
     }
 }
 

@@ -42,7 +42,7 @@ pub(super) fn load_buffer(
 }
 
 /// Resolves a relative URI inside `base`, refusing anything that could leave it.
-fn resolve_relative(uri: &str, base: Option<&Path>) -> Result<PathBuf, String> {
+pub(super) fn resolve_relative(uri: &str, base: Option<&Path>) -> Result<PathBuf, String> {
     const ONLY: &str = "only data: URIs and relative paths inside the glTF's folder are read";
     let scheme_end = uri.find(':');
     let first_sep = uri.find(['/', '\\', '?', '#']);
@@ -128,8 +128,15 @@ fn percent_decode(s: &str) -> Result<String, String> {
     String::from_utf8(out).map_err(|_| "percent-decodes to invalid UTF-8".to_owned())
 }
 
-/// Standard base64 (RFC 4648, `=` padding optional, whitespace not allowed).
-fn decode_base64(s: &str) -> Result<Vec<u8>, String> {
+/// Standard base64 (RFC 4648, `=` padding optional, whitespace not allowed), as in glTF
+/// `data:` URIs.
+///
+/// ```
+/// use face_prep::gltf_read::decode_base64;
+/// assert_eq!(decode_base64("Zm9vYg==").unwrap(), b"foob");
+/// assert!(decode_base64("Zm9v!").is_err());
+/// ```
+pub fn decode_base64(s: &str) -> Result<Vec<u8>, String> {
     let s = s.trim_end_matches('=');
     let mut out = Vec::with_capacity(s.len() / 4 * 3 + 3);
     let (mut acc, mut bits) = (0u32, 0u32);

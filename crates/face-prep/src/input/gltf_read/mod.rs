@@ -22,11 +22,14 @@
 mod accessors;
 mod buffers;
 mod document;
+mod external;
 mod glb;
 mod meshes;
 
 #[doc(inline)]
 pub use crate::error::GltfError;
+pub use buffers::decode_base64;
 pub(crate) use document::Document;
 pub use document::MAX_NODE_DEPTH;
+pub use external::files_read_by;
 pub(crate) use meshes::{attribute, mesh_labels, primitives};

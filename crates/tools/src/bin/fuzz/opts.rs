@@ -11,9 +11,18 @@ pub(crate) struct Opts {
     pub(crate) seed: u64,
     pub(crate) case_seconds: f64,
     pub(crate) hang_seconds: f64,
+    /// In-process targets: the per-case heap limit; `cli`: the address-space limit of each
+    /// `facebem` run (`ulimit -v`).
     pub(crate) case_mb: usize,
+    /// A case that finishes but uses more CPU seconds than this is a finding ("slow").
+    pub(crate) slow_seconds: f64,
+    /// The `facebem` binary of the `cli` target (default: next to this one).
+    pub(crate) facebem: Option<PathBuf>,
     pub(crate) worker: bool,
 }
+
+/// The targets, in-process ones first.
+pub(crate) const TARGETS: [&str; 5] = ["obj", "gltf", "rig", "muscles", "cli"];
 
 pub(crate) fn parse_opts() -> Result<Opts, String> {
     let mut o = Opts {
@@ -21,9 +30,11 @@ pub(crate) fn parse_opts() -> Result<Opts, String> {
         target: "obj".into(),
         out: PathBuf::new(),
         seed: 1,
-        case_seconds: 5.0,
+        case_seconds: f64::NAN,
         hang_seconds: 60.0,
-        case_mb: 500,
+        case_mb: 0,
+        slow_seconds: 10.0,
+        facebem: None,
         worker: false,
     };
     let mut args = std::env::args().skip(1);
@@ -37,12 +48,25 @@ pub(crate) fn parse_opts() -> Result<Opts, String> {
             "--case-seconds" => o.case_seconds = val()?.parse().map_err(|e| format!("{e}"))?,
             "--hang-seconds" => o.hang_seconds = val()?.parse().map_err(|e| format!("{e}"))?,
             "--case-mb" => o.case_mb = val()?.parse().map_err(|e| format!("{e}"))?,
+            "--slow-seconds" => o.slow_seconds = val()?.parse().map_err(|e| format!("{e}"))?,
+            "--facebem" => o.facebem = Some(PathBuf::from(val()?)),
             "--worker" => o.worker = true,
             other => return Err(format!("unknown argument {other}")),
         }
     }
-    if !["obj", "gltf", "rig", "muscles"].contains(&o.target.as_str()) {
-        return Err(format!("--target {} (obj, gltf, rig or muscles)", o.target));
+    if !TARGETS.contains(&o.target.as_str()) {
+        return Err(format!(
+            "--target {} (obj, gltf, rig, muscles or cli)",
+            o.target
+        ));
+    }
+    let cli = o.target == "cli";
+    if o.case_seconds.is_nan() {
+        // A `facebem` run is a whole program (a rig of the bundled face takes ~2.5 s).
+        o.case_seconds = if cli { 30.0 } else { 5.0 };
+    }
+    if o.case_mb == 0 {
+        o.case_mb = if cli { 4096 } else { 500 };
     }
     if o.out.as_os_str().is_empty() {
         o.out = std::env::temp_dir().join(format!("facebem-fuzz-{}", o.target));
@@ -53,7 +77,16 @@ pub(crate) fn parse_opts() -> Result<Opts, String> {
 /// CPU seconds of this process (`self_` true: its own threads) or of its waited-for children
 /// (`self_` false), from `/proc/self/stat` (clock ticks of 1/100 s, Linux's USER_HZ).
 fn cpu_seconds(self_: bool) -> Option<f64> {
-    let stat = std::fs::read_to_string("/proc/self/stat").ok()?;
+    stat_cpu_seconds("/proc/self/stat", self_)
+}
+
+/// CPU seconds of the running process `pid` (all its threads), from `/proc/PID/stat`.
+pub(crate) fn process_cpu_seconds(pid: u32) -> Option<f64> {
+    stat_cpu_seconds(&format!("/proc/{pid}/stat"), true)
+}
+
+fn stat_cpu_seconds(path: &str, self_: bool) -> Option<f64> {
+    let stat = std::fs::read_to_string(path).ok()?;
     // Fields after the command name "(…)": state is field 3, utime 14, stime 15, cutime 16,
     // cstime 17 (proc(5)).
     let rest = &stat[stat.rfind(')')? + 2..];

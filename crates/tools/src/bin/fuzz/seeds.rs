@@ -8,9 +8,35 @@ use facebem::{Control, PipelineParams, cache};
 
 use crate::opts::Opts;
 
-fn face_path() -> PathBuf {
+pub(crate) fn face_path() -> PathBuf {
     Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."))
         .join("assets/mediapipe_canonical_4loop.obj")
+}
+
+/// `tests/bad_inputs/`: every hostile file found so far.
+pub(crate) fn bad_inputs_dir() -> PathBuf {
+    Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../..")).join("tests/bad_inputs")
+}
+
+/// The files of `tests/bad_inputs/` with one of these extensions (name, bytes), sorted.
+pub(crate) fn bad_inputs(kinds: &[&str]) -> Vec<(String, Vec<u8>)> {
+    let mut out = Vec::new();
+    for e in std::fs::read_dir(bad_inputs_dir())
+        .into_iter()
+        .flatten()
+        .flatten()
+    {
+        let p = e.path();
+        let ext = p.extension().and_then(|x| x.to_str()).unwrap_or("");
+        if kinds.contains(&ext)
+            && let Ok(bytes) = std::fs::read(&p)
+        {
+            let name = p.file_name().unwrap_or_default().to_string_lossy();
+            out.push((name.into_owned(), bytes));
+        }
+    }
+    out.sort();
+    out
 }
 
 pub(crate) fn ext(target: &str, case: &[u8]) -> &'static str {
@@ -25,7 +51,7 @@ pub(crate) fn ext(target: &str, case: &[u8]) -> &'static str {
 
 /// One GLB (positions f32, indices u32) of a face mesh, plus a .gltf with a data URI and one
 /// with an external `face.bin`.
-fn gltf_seeds(face: &FaceMesh) -> (Vec<u8>, String, String, Vec<u8>) {
+pub(crate) fn gltf_seeds(face: &FaceMesh) -> (Vec<u8>, String, String, Vec<u8>) {
     let mut bin = Vec::new();
     for p in &face.vertices {
         for c in p.to_array() {
@@ -68,6 +94,61 @@ fn gltf_seeds(face: &FaceMesh) -> (Vec<u8>, String, String, Vec<u8>) {
     (glb, data, external, bin)
 }
 
+/// The face OBJ with a `vt` (planar projection) and a `vn` line per vertex and `f a/a/a`
+/// corners, so the texture-coordinate and normal paths of the reader and exports run.
+pub(crate) fn textured_obj(text: &str) -> String {
+    let mut out = String::new();
+    let mut faces = String::new();
+    let mut positions: Vec<[f64; 3]> = Vec::new();
+    for line in text.lines() {
+        let words: Vec<&str> = line.split_whitespace().collect();
+        match words.first() {
+            Some(&"f") => {
+                let corners: Vec<String> =
+                    words[1..].iter().map(|c| format!("{c}/{c}/{c}")).collect();
+                faces.push_str(&format!("f {}\n", corners.join(" ")));
+            }
+            Some(&"v") => {
+                let c: Vec<f64> = words[1..].iter().filter_map(|w| w.parse().ok()).collect();
+                positions.push([
+                    c.first().copied().unwrap_or(0.0),
+                    c.get(1).copied().unwrap_or(0.0),
+                    c.get(2).copied().unwrap_or(0.0),
+                ]);
+                out.push_str(line);
+                out.push('\n');
+            }
+            _ => {
+                out.push_str(line);
+                out.push('\n');
+            }
+        }
+    }
+    let (lo, hi) = positions
+        .iter()
+        .fold(([f64::MAX; 2], [f64::MIN; 2]), |(lo, hi), p| {
+            (
+                [lo[0].min(p[0]), lo[1].min(p[1])],
+                [hi[0].max(p[0]), hi[1].max(p[1])],
+            )
+        });
+    for p in &positions {
+        let u = (p[0] - lo[0]) / (hi[0] - lo[0]).max(1e-9);
+        let v = (p[1] - lo[1]) / (hi[1] - lo[1]).max(1e-9);
+        out.push_str(&format!("vt {u:.6} {v:.6}\n"));
+    }
+    for p in &positions {
+        let len = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt().max(1e-9);
+        out.push_str(&format!(
+            "vn {:.6} {:.6} {:.6}\n",
+            p[0] / len,
+            p[1] / len,
+            p[2] / len
+        ));
+    }
+    out + &faces
+}
+
 fn base64(b: &[u8]) -> String {
     const T: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
     let mut s = String::new();
@@ -93,7 +174,7 @@ pub(crate) fn prepare_seeds(o: &Opts) -> Result<(), String> {
     std::fs::create_dir_all(o.out.join("work")).map_err(|e| err(&e))?;
     let face_text = std::fs::read_to_string(face_path()).map_err(|e| err(&e))?;
     let face = FaceMesh::from_obj_str(&face_text).map_err(|e| err(&e))?;
-    let corpus = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../..")).join("tests/bad_inputs");
+    let corpus = bad_inputs_dir();
     let kinds: &[&str] = match o.target.as_str() {
         "obj" => &["obj"],
         "gltf" => &["gltf", "glb"],
@@ -111,7 +192,11 @@ pub(crate) fn prepare_seeds(o: &Opts) -> Result<(), String> {
         }
     }
     match o.target.as_str() {
-        "obj" => std::fs::write(seeds.join("face.obj"), &face_text).map_err(|e| err(&e))?,
+        "obj" => {
+            std::fs::write(seeds.join("face.obj"), &face_text).map_err(|e| err(&e))?;
+            let textured = textured_obj(&face_text);
+            std::fs::write(seeds.join("face_vt_vn.obj"), textured).map_err(|e| err(&e))?;
+        }
         "gltf" => {
             let (glb, data, external, bin) = gltf_seeds(&face);
             std::fs::write(seeds.join("face.glb"), glb).map_err(|e| err(&e))?;

@@ -1,0 +1,180 @@
+//! Valid faces that the pipeline refused or failed on (issue 36): dense midpoint subdivisions,
+//! sliver triangles, and parameters that reached an assertion in meshoptimizer.
+
+mod support;
+
+use face_prep::FaceMesh;
+use facebem::copy::{LargeFaceParams, simplify_anchored};
+use facebem::{Control, PipelineError, PipelineParams, build_face_model};
+use glam::DVec3;
+
+fn mediapipe() -> FaceMesh {
+    face_prep::load_face(&support::asset(support::FACES[0])).expect("bundled face")
+}
+
+/// `levels` rounds of exact midpoint subdivision (every triangle into four): collinear vertex
+/// triples everywhere, the shape unchanged.
+fn subdivided(mesh: &FaceMesh, levels: usize) -> FaceMesh {
+    let mut vertices = mesh.vertices.clone();
+    let mut triangles = mesh.triangles.clone();
+    for _ in 0..levels {
+        let mut midpoints = std::collections::HashMap::new();
+        let mut mid = |a: u32, b: u32, vertices: &mut Vec<DVec3>| {
+            *midpoints.entry((a.min(b), a.max(b))).or_insert_with(|| {
+                vertices.push(0.5 * (vertices[a as usize] + vertices[b as usize]));
+                (vertices.len() - 1) as u32
+            })
+        };
+        let mut next = Vec::with_capacity(4 * triangles.len());
+        for [a, b, c] in triangles {
+            let ab = mid(a, b, &mut vertices);
+            let bc = mid(b, c, &mut vertices);
+            let ca = mid(c, a, &mut vertices);
+            next.extend([[a, ab, ca], [ab, b, bc], [ca, bc, c], [ab, bc, ca]]);
+        }
+        triangles = next;
+    }
+    FaceMesh::from_triangles(&vertices, &triangles).expect("a subdivided face is valid")
+}
+
+/// The face with a sliver of height `height` × edge length inserted into each of `count`
+/// interior edges: triangle (a, b, c) becomes (a, m, c), (m, b, c) and the sliver (a, b, m),
+/// m the midpoint of a–b moved `height` × |ab| toward c.
+fn with_slivers(mesh: &FaceMesh, count: usize, height: f64) -> FaceMesh {
+    let mut vertices = mesh.vertices.clone();
+    let mut triangles = mesh.triangles.clone();
+    let mut used = std::collections::HashSet::new();
+    let mut made = 0;
+    let stride = mesh.triangles.len() / count.max(1);
+    for t in (0..mesh.triangles.len()).step_by(stride.max(1)) {
+        let [a, b, c] = mesh.triangles[t];
+        if made == count || !used.insert(t) {
+            continue;
+        }
+        let (pa, pb, pc) = (
+            vertices[a as usize],
+            vertices[b as usize],
+            vertices[c as usize],
+        );
+        let ab = pb - pa;
+        let foot = pa + ab * (pc - pa).dot(ab) / ab.length_squared();
+        let toward_c = (pc - foot).normalize();
+        vertices.push(0.5 * (pa + pb) + height * ab.length() * toward_c);
+        let m = (vertices.len() - 1) as u32;
+        triangles[t] = [a, m, c];
+        triangles.push([m, b, c]);
+        triangles.push([a, b, m]);
+        made += 1;
+    }
+    assert_eq!(made, count);
+    FaceMesh::from_triangles(&vertices, &triangles).expect("slivers pass validation")
+}
+
+/// Regression (issue 36, part 1): meshoptimizer asserts (aborting the process) when asked for
+/// more triangles than the mesh has. A target at or above the mesh's size is the mesh itself.
+#[test]
+fn a_target_above_the_face_size_does_not_abort() {
+    let mesh = mediapipe();
+    for target in [mesh.triangles.len(), mesh.triangles.len() + 1, 1 << 40] {
+        let params = LargeFaceParams {
+            target_triangles: target,
+            ..LargeFaceParams::default()
+        };
+        let copy = simplify_anchored(&mesh.vertices, &mesh.triangles, &params, &[], &[])
+            .expect("the whole mesh");
+        assert_eq!(copy.triangles, mesh.triangles, "target {target}");
+    }
+}
+
+/// Every numeric parameter outside its documented range is refused by
+/// [`PipelineParams::validate`] and by the pipeline before any work, naming the field.
+#[test]
+fn out_of_range_parameters_are_refused_naming_the_field() {
+    let mesh = mediapipe();
+    let base = PipelineParams::default();
+    let mut cases: Vec<(PipelineParams, &str)> = Vec::new();
+    let mut p = base.clone();
+    p.poisson = f64::NAN;
+    cases.push((p, "poisson"));
+    let mut p = base.clone();
+    p.rig.offset = 1e-320;
+    cases.push((p, "rig.offset"));
+    let mut p = base.clone();
+    p.rig.thickness = f64::INFINITY;
+    cases.push((p, "rig.thickness"));
+    let mut p = base.clone();
+    p.rig.smoothing_iterations = usize::MAX;
+    cases.push((p, "rig.smoothing_iterations"));
+    let mut p = base.clone();
+    p.large_face.target_triangles = 1_000_000;
+    cases.push((p, "large_face.target_triangles"));
+    let mut p = base.clone();
+    p.large_face.max_triangles = usize::MAX;
+    cases.push((p, "large_face.max_triangles"));
+    let mut p = base.clone();
+    p.quadrature.tolerance = 0.0;
+    cases.push((p, "quadrature.tolerance"));
+    for (params, field) in cases {
+        let err = params.validate().expect_err(field);
+        assert_eq!(err.name, field, "{err}");
+        match build_face_model(&mesh, &params, &Control::new()) {
+            Err(PipelineError::Param(e)) => assert_eq!(e.name, field),
+            other => panic!("{field}: {:?}", other.map(|_| "a model")),
+        }
+    }
+}
+
+/// Regression (issue 36, part 2): exact midpoint subdivisions of valid faces were refused
+/// ("triangle 0 [0, 1, 2] is degenerate: area 1.4e-16"): meshoptimizer's edge collapses turn
+/// exactly collinear vertices into zero-area triangles of the simulated copy. The copy is then
+/// remeshed instead, the report says why, and the rig is sound.
+#[test]
+fn a_midpoint_subdivided_face_is_simulated_on_a_remeshed_copy() {
+    let mesh = subdivided(&mediapipe(), 2);
+    assert_eq!(mesh.triangles.len(), 16 * 852);
+    let model = build_face_model(&mesh, &PipelineParams::default(), &Control::new())
+        .expect("a subdivided face rigs");
+    let r = &model.report;
+    let reason = r
+        .copy_fallback
+        .as_deref()
+        .expect("the fallback is reported");
+    assert!(reason.contains("degenerate"), "{reason}");
+    assert!(
+        r.warnings().iter().any(|w| w.contains("remeshed copy")),
+        "{:?}",
+        r.warnings()
+    );
+    assert!(
+        (1000..=2000).contains(&r.simulated_triangles),
+        "{}",
+        r.simulated_triangles
+    );
+    let distrust = facebem::model::distrust(&model);
+    assert!(distrust.is_empty(), "{distrust:?}");
+}
+
+/// Regression (issue 36, part 3): a face with sliver triangles (height/edge 1e-5 to 1e-7)
+/// passed validation and then failed in the solve with "analytic diagonal G block: centroid
+/// not inside its (validated) element". It is solved, and the rig is sound.
+#[test]
+fn a_face_with_sliver_triangles_is_solved() {
+    let plain = facebem::prepare(&mediapipe(), &PipelineParams::default()).expect("prep");
+    let mesh = with_slivers(&mediapipe(), 6, 1e-7);
+    let model = build_face_model(&mesh, &PipelineParams::default(), &Control::new())
+        .expect("slivers are solved");
+    // Every sliver (and its split neighbours) is simulated, none peeled off or simplified.
+    assert_eq!(
+        model.report.simulated_triangles,
+        plain.simulated.triangles.len() + 12
+    );
+    let distrust = facebem::model::distrust(&model);
+    assert!(distrust.is_empty(), "{distrust:?}");
+    let moved = model
+        .basis
+        .displacements
+        .iter()
+        .flatten()
+        .all(|d| d.is_finite());
+    assert!(moved, "every displacement finite");
+}
