@@ -126,25 +126,30 @@ fn out_of_range_parameters_are_refused_naming_the_field() {
 
 /// Regression (issue 36, part 2): exact midpoint subdivisions of valid faces were refused
 /// ("triangle 0 [0, 1, 2] is degenerate: area 1.4e-16"): meshoptimizer's edge collapses turn
-/// exactly collinear vertices into zero-area triangles of the simulated copy. The copy is then
-/// remeshed instead, the report says why, and the rig is sound.
+/// exactly collinear vertices into zero-area caps in the simulated copy. The caps are flipped
+/// out ([`facebem::copy::flips`]), the edge-collapse copy is kept (no fallback to the remeshed
+/// copy), and the rig is sound.
 #[test]
-fn a_midpoint_subdivided_face_is_simulated_on_a_remeshed_copy() {
+fn a_midpoint_subdivided_face_keeps_its_edge_collapse_copy() {
     let mesh = subdivided(&mediapipe(), 2);
     assert_eq!(mesh.triangles.len(), 16 * 852);
+    let prepared = facebem::prepare(&mesh, &PipelineParams::default()).expect("prep");
+    let copy = prepared.simplified.as_ref().expect("a large face's copy");
+    let (lo, hi) = face_prep::topology::bounding_box(copy.vertices.iter().copied());
+    let smallest = copy
+        .triangles
+        .iter()
+        .map(|t| face_prep::topology::triangle_area(t.map(|v| copy.vertices[v as usize])))
+        .fold(f64::INFINITY, f64::min);
+    let degenerate = face_prep::topology::DEGENERATE_REL_AREA * (hi - lo).length_squared();
+    assert!(
+        smallest > 1e3 * degenerate,
+        "{smallest:e} against {degenerate:e}"
+    );
     let model = build_face_model(&mesh, &PipelineParams::default(), &Control::new())
         .expect("a subdivided face rigs");
     let r = &model.report;
-    let reason = r
-        .copy_fallback
-        .as_deref()
-        .expect("the fallback is reported");
-    assert!(reason.contains("degenerate"), "{reason}");
-    assert!(
-        r.warnings().iter().any(|w| w.contains("remeshed copy")),
-        "{:?}",
-        r.warnings()
-    );
+    assert_eq!(r.copy_fallback, None);
     assert!(
         (1000..=2000).contains(&r.simulated_triangles),
         "{}",

@@ -18,6 +18,7 @@
 //! the simplified front surface, interpolated with that point's barycentric coordinates
 //! ([`Transfer`](crate::transfer::Transfer)).
 
+pub mod flips;
 pub(crate) mod reduce;
 pub mod remesh;
 pub mod remesh_face;

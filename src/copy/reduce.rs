@@ -88,8 +88,14 @@ fn copy_large_face(
         let (s, path) = remesh(&base.vertices, &base.triangles, params, keep)?;
         return Ok((s, path, None));
     }
-    let (s, path) =
+    let (mut s, path) =
         super::simplify::simplify_face_keeping(&base.vertices, &base.triangles, params, keep)?;
+    if face_prep::topology::validate(&s.vertices, &s.triangles).is_err() {
+        // Caps (a corner on the opposite edge) are flipped out first ([`super::flips`]).
+        let (lo, hi) = face_prep::topology::bounding_box(s.vertices.iter().copied());
+        let degenerate = face_prep::topology::DEGENERATE_REL_AREA * (hi - lo).length_squared();
+        super::flips::flip_out_caps(&s.vertices, &mut s.triangles, degenerate);
+    }
     match face_prep::topology::validate(&s.vertices, &s.triangles) {
         Ok(_) => Ok((s, path, None)),
         Err(e) => {
