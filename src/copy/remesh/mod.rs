@@ -210,8 +210,11 @@ pub fn remesh(
     };
     let surface = Surface::new(positions, triangles, &loops, length);
     let mut work = Work::new(positions, triangles, &loops, keep, params);
+    let max_triangles = triangles
+        .len()
+        .saturating_add(MAX_TRIANGLES_PER_TARGET.saturating_mul(params.target_triangles));
     for _ in 0..params.iterations {
-        work.split_long(&size, &surface);
+        work.split_long(&size, &surface, max_triangles);
         work.collapse_short(&size, params);
         work.flip_to_valence(params);
         work.relax(&surface, params);
@@ -228,6 +231,13 @@ pub fn remesh(
     }
     Ok(out)
 }
+
+/// The splits stop once the working copy holds the input's triangles plus this many times the
+/// target (a healthy remesh never comes near it: it ends near the target). Regression (issue 36,
+/// found by the fuzzer): a face with one vertex moved 10⁵ away (a huge triangle beside the
+/// refined mouth and eyes) kept doubling its triangles for over 300 s
+/// (`a_remesh_of_a_face_with_a_spike_is_bounded`).
+pub const MAX_TRIANGLES_PER_TARGET: usize = 8;
 
 /// The global target edge length at which the size field's equilateral triangles cover the
 /// input's area with about `params.target_triangles` (bisection; `uniform` without
@@ -348,6 +358,23 @@ mod tests {
     fn face() -> (Vec<DVec3>, Vec<[u32; 3]>) {
         let mesh = crate::input::default_face().unwrap();
         (mesh.vertices, mesh.triangles)
+    }
+
+    /// Regression (issue 36, found by the fuzzer): one vertex of MediaPipe moved 10⁵ away made
+    /// a huge triangle, and the splits kept doubling the copy for over 300 s. The copy stays
+    /// within the input's triangles plus [`MAX_TRIANGLES_PER_TARGET`] times the target.
+    #[test]
+    fn a_remesh_of_a_face_with_a_spike_is_bounded() {
+        let (mut v, t) = face();
+        v[67].x = 1e5;
+        let keep = vec![false; v.len()];
+        let started = std::time::Instant::now();
+        let bound = t.len() + MAX_TRIANGLES_PER_TARGET * 200;
+        match remesh(&v, &t, &keep, &params(200)) {
+            Ok(out) => assert!(out.triangles.len() <= bound, "{}", out.triangles.len()),
+            Err(e) => eprintln!("refused: {e}"),
+        }
+        eprintln!("{:.2} s", started.elapsed().as_secs_f64());
     }
 
     fn params(target: usize) -> RemeshParams {

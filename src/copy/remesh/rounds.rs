@@ -152,8 +152,9 @@ impl Work {
     }
 
     /// Splits every edge longer than 4/3 of the size field at its midpoint (on the surface, or on the border
-    /// loop for a border edge), longest first, until none is left.
-    pub(super) fn split_long(&mut self, size: &SizeField, surface: &Surface) {
+    /// loop for a border edge), longest first, until none is left or the copy holds
+    /// `max_triangles`.
+    pub(super) fn split_long(&mut self, size: &SizeField, surface: &Surface, max_triangles: usize) {
         for _ in 0..32 {
             let adj = self.adjacency();
             let mut edges = self.relative_lengths(&adj, size, |l| l > 4.0 / 3.0);
@@ -163,6 +164,9 @@ impl Work {
             edges.sort_by(|x, y| y.1.total_cmp(&x.1).then(x.0.cmp(&y.0)));
             let mut touched: HashSet<u32> = HashSet::new();
             for ((a, b), _) in edges {
+                if self.tris.len() >= max_triangles {
+                    return;
+                }
                 let owners = &adj.edges[&(a, b)];
                 if owners.iter().any(|t| touched.contains(t)) {
                     continue;
