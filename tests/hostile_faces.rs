@@ -4,7 +4,7 @@
 mod support;
 
 use face_prep::FaceMesh;
-use facebem::copy::{LargeFaceParams, simplify_anchored};
+use facebem::copy::{CopyMethod, LargeFaceParams, simplify_anchored};
 use facebem::{Control, PipelineError, PipelineParams, build_face_model};
 use glam::DVec3;
 
@@ -182,4 +182,26 @@ fn a_face_with_sliver_triangles_is_solved() {
         .flatten()
         .all(|d| d.is_finite());
     assert!(moved, "every displacement finite");
+}
+
+/// Regression (issue 36, found by the fuzzer's `cli` target): a face above `--max-triangles`
+/// with a target above its own size was remeshed UP to the target (`--max-triangles 835
+/// --target-triangles 1499 --copy remesh` on MediaPipe's 836 peeled triangles: a 1 499-triangle
+/// copy, 10 s of solve). Whatever the method, such a face is simulated whole.
+#[test]
+fn a_target_above_the_face_size_leaves_it_whole_for_either_copy() {
+    let mesh = mediapipe();
+    let whole = facebem::prepare(&mesh, &PipelineParams::default()).expect("prep");
+    for method in [CopyMethod::Collapse, CopyMethod::Remesh] {
+        let mut params = PipelineParams::default();
+        params.large_face.max_triangles = 835;
+        params.large_face.target_triangles = 1499;
+        params.large_face.method = method;
+        let prepared = facebem::prepare(&mesh, &params).expect("prep");
+        assert_eq!(
+            prepared.simulated.triangles, whole.simulated.triangles,
+            "{method:?}"
+        );
+        assert_eq!(prepared.simplify_path, None, "{method:?}");
+    }
 }
