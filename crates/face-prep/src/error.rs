@@ -433,6 +433,21 @@ pub enum PrepError {
         /// How many triangles it crosses.
         crossings: usize,
     },
+    /// A vertex lies far outside the rest of the surface ([`crate::input::stray`]).
+    #[error(
+        "vertex {vertex} at {position:?} lies {ratio:.0} times farther from the surface's median \
+         position than 90 % of the vertices do: a stray vertex (a mistyped or corrupted \
+         position?)"
+    )]
+    StrayVertex {
+        /// The vertex: 1-based in the file's order when read from a file ([`crate::FaceMesh`]),
+        /// 0-based among the vertices given to [`crate::input::stray::check_no_stray_vertex`].
+        vertex: usize,
+        /// Its position, in the file's units.
+        position: [f64; 3],
+        /// Its distance from the median position over the 90th-percentile distance.
+        ratio: f64,
+    },
     /// The canonical frame cannot be determined.
     #[error("cannot orient the face: {reason}")]
     Orientation {

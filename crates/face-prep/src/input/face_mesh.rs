@@ -202,6 +202,22 @@ impl FaceMesh {
         input_to_vertex: Vec<Option<u32>>,
     ) -> Result<FaceMesh, PrepError> {
         let loops = topology::validate(&vertices, &triangles)?;
+        // Named by its place in the file (1-based, as OBJ counts), not after welding.
+        crate::input::stray::check_no_stray_vertex(&vertices, &triangles).map_err(|e| match e {
+            PrepError::StrayVertex {
+                vertex,
+                position,
+                ratio,
+            } => PrepError::StrayVertex {
+                vertex: input_to_vertex
+                    .iter()
+                    .position(|v| *v == Some(vertex as u32))
+                    .map_or(vertex, |i| i + 1),
+                position,
+                ratio,
+            },
+            other => other,
+        })?;
         topology::check_four_loops(&vertices, &loops)?;
         Ok(FaceMesh {
             vertices,
