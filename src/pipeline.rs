@@ -30,10 +30,10 @@ pub fn prepare(mesh: &FaceMesh, params: &PipelineParams) -> Result<PreparedRig, 
         ),
         None => (mesh.clone(), None),
     };
-    let mut rig = match params.boxes {
-        Some(boxes) => FaceRig::build_with_boxes(&simulated, &params.rig, boxes)?,
-        None => FaceRig::build(&simulated, &params.rig)?,
-    };
+    let mut rig = FaceRig::build(&simulated, &params.rig)?;
+    if let Some(boxes) = params.boxes {
+        rig = rig.with_boxes(boxes)?;
+    }
     if let Some(muscles) = &params.muscles {
         rig = rig.with_muscles(muscles.clone())?;
     }

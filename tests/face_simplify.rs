@@ -5,7 +5,7 @@
 mod support;
 
 use face_prep::FaceMesh;
-use facebem::copy::remesh_face::remesh_face_keeping;
+use facebem::copy::remesh_face::remesh_face;
 use facebem::copy::simplify::{SimplifyPath, mirror_map, simplify_face};
 use facebem::copy::{CopyMethod, LargeFaceParams};
 use facebem::{PipelineParams, prepare};
@@ -122,7 +122,7 @@ fn symmetric_faces_are_simplified_as_mirrored_halves() {
         ("leeperrysmith_face_open_4loop.obj", SimplifyPath::Canonical),
     ] {
         let mesh = load(name);
-        let (s, got) = simplify_face(&mesh.vertices, &mesh.triangles, &params).unwrap();
+        let (s, got) = simplify_face(&mesh.vertices, &mesh.triangles, &params, &[]).unwrap();
         assert_eq!(got, path, "{name}");
         let loops = face_prep::topology::validate(&s.vertices, &s.triangles).unwrap();
         assert_eq!(loops.len(), 4, "{name}: the copy has {} loops", loops.len());
@@ -197,7 +197,7 @@ fn remeshed_copies_keep_four_loops_and_their_size() {
         ("leeperrysmith_face_open_4loop.obj", SimplifyPath::Remeshed),
     ] {
         let mesh = load(name);
-        let (s, got) = remesh_face_keeping(&mesh.vertices, &mesh.triangles, &params, &[]).unwrap();
+        let (s, got) = remesh_face(&mesh.vertices, &mesh.triangles, &params, &[]).unwrap();
         assert_eq!(got, path, "{name}");
         let loops = face_prep::topology::validate(&s.vertices, &s.triangles).unwrap();
         assert_eq!(loops.len(), 4, "{name}: the copy has {} loops", loops.len());

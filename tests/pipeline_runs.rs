@@ -180,7 +180,7 @@ fn feature_boxes_parameter_places_skull_and_muscles() {
         };
         let edited = facebem::prepare(&mesh, &params).unwrap();
         assert_eq!(edited.rig.boxes, boxes, "{face}");
-        let expected = auto.rig.rebuild_with_boxes(boxes).unwrap();
+        let expected = auto.rig.clone().with_boxes(boxes).unwrap();
         assert_eq!(edited.rig.skull, expected.skull, "{face}");
         assert_eq!(edited.rig.muscles, expected.muscles, "{face}");
         assert_ne!(

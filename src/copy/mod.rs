@@ -56,7 +56,7 @@ pub struct LargeFaceParams {
     /// Default 0.5.
     pub border_spacing: f64,
     /// How the copy is made: edge collapses that keep input vertices (default), or isotropic
-    /// remeshing ([`crate::copy::remesh_face::remesh_face_keeping`]).
+    /// remeshing ([`crate::copy::remesh_face::remesh_face`]).
     #[serde(default)]
     pub method: CopyMethod,
 }
@@ -272,22 +272,13 @@ pub fn simplify(
     triangles: &[[u32; 3]],
     params: &LargeFaceParams,
 ) -> Result<Simplified, SimplifyError> {
-    simplify_with_locks(vertices, triangles, params, &[])
+    simplify_anchored(vertices, triangles, params, &[], &[])
 }
 
-/// [`simplify`](fn@simplify) with the vertices flagged in `extra_locks` (one flag per vertex; a shorter
-/// slice leaves the rest unflagged) locked besides the resampled border.
-pub fn simplify_with_locks(
-    vertices: &[DVec3],
-    triangles: &[[u32; 3]],
-    params: &LargeFaceParams,
-    extra_locks: &[bool],
-) -> Result<Simplified, SimplifyError> {
-    simplify_anchored(vertices, triangles, params, extra_locks, &[])
-}
-
-/// [`simplify_with_locks`] that also keeps the vertices flagged in `anchors` and resamples the
-/// borders from the anchored border vertices ([`border_locks_anchored`]).
+/// [`simplify`](fn@simplify) with the vertices flagged in `extra_locks` locked besides the
+/// resampled border, and the vertices flagged in `anchors` kept, the borders resampled from the
+/// anchored border vertices ([`border_locks_anchored`]). One flag per vertex in each; a shorter
+/// slice leaves the rest unflagged.
 ///
 /// ```
 /// use facebem::copy::{LargeFaceParams, simplify_anchored};

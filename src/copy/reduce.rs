@@ -87,13 +87,13 @@ fn copy_large_face(
     params: &LargeFaceParams,
     keep: &[u32],
 ) -> Result<(Simplified, SimplifyPath, Option<String>), SimplifyError> {
-    let remesh = super::remesh_face::remesh_face_keeping;
+    let remesh = super::remesh_face::remesh_face;
     if params.method == CopyMethod::Remesh {
         let (s, path) = remesh(&base.vertices, &base.triangles, params, keep)?;
         return Ok((s, path, None));
     }
     let (mut s, path) =
-        super::simplify::simplify_face_keeping(&base.vertices, &base.triangles, params, keep)?;
+        super::simplify::simplify_face(&base.vertices, &base.triangles, params, keep)?;
     if face_prep::topology::validate(&s.vertices, &s.triangles).is_err() {
         // Caps (a corner on the opposite edge) are flipped out first ([`super::flips`]).
         let (lo, hi) = face_prep::topology::bounding_box(s.vertices.iter().copied());

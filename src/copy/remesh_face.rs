@@ -9,7 +9,7 @@ use crate::copy::{LargeFaceParams, Simplified, SimplifyError};
 use glam::DVec3;
 
 /// Edge length at the mouth loop, as a fraction of the remeshed copy's global target length
-/// ([`remesh_face_keeping`]): the lips' knife edge and the commissures, where the responses
+/// ([`remesh_face`]): the lips' knife edge and the commissures, where the responses
 /// change fastest.
 pub const MOUTH_REFINEMENT: f64 = 0.3;
 
@@ -20,7 +20,7 @@ pub const EYE_REFINEMENT: f64 = 0.5;
 /// Growth of the edge length per unit of distance from the mouth and eye loops.
 pub const REFINEMENT_GRADE: f64 = 0.2;
 
-/// [`crate::copy::simplify::simplify_face_keeping`] by isotropic remeshing ([`crate::copy::remesh`]) instead of edge
+/// [`crate::copy::simplify::simplify_face`] by isotropic remeshing ([`crate::copy::remesh`]) instead of edge
 /// collapses: a copy of near-equilateral triangles about `params.target_triangles` strong,
 /// smaller toward the mouth and the eyes ([`MOUTH_REFINEMENT`], [`EYE_REFINEMENT`]), on the
 /// input surface. Built in the face's canonical frame and order, so it does not depend on how
@@ -30,16 +30,16 @@ pub const REFINEMENT_GRADE: f64 = 0.2;
 /// each. A face without a canonical frame is remeshed as written, without refinement.
 ///
 /// ```
-/// use facebem::copy::remesh_face::remesh_face_keeping;
+/// use facebem::copy::remesh_face::remesh_face;
 /// use facebem::copy::simplify::SimplifyPath;
 /// use facebem::copy::LargeFaceParams;
 /// let mesh = facebem::input::default_face().unwrap();
 /// let params = LargeFaceParams { target_triangles: 600, ..LargeFaceParams::default() };
-/// let (copy, path) = remesh_face_keeping(&mesh.vertices, &mesh.triangles, &params, &[]).unwrap();
+/// let (copy, path) = remesh_face(&mesh.vertices, &mesh.triangles, &params, &[]).unwrap();
 /// assert_eq!(path, SimplifyPath::RemeshedMirrored);
 /// assert!((450..900).contains(&copy.triangles.len()));
 /// ```
-pub fn remesh_face_keeping(
+pub fn remesh_face(
     vertices: &[DVec3],
     triangles: &[[u32; 3]],
     params: &LargeFaceParams,

@@ -72,38 +72,23 @@ impl SimplifyPath {
 /// mirror-symmetric. Falls back to [`crate::copy::simplify`](fn@crate::copy::simplify) of the mesh as written when
 /// it has no canonical frame. The copy's vertices are vertices of the input.
 ///
+/// The vertices `keep` (indices into `vertices`; out-of-range ones are ignored) stay in the
+/// copy. Kept border vertices anchor the border's resampling
+/// ([`crate::copy::border_locks_anchored`]). On a mirror-symmetric face a kept vertex keeps its
+/// mirror image too.
+///
 /// ```
 /// use facebem::copy::simplify::{SimplifyPath, simplify_face};
 /// use facebem::copy::LargeFaceParams;
 /// let mesh = facebem::input::default_face().unwrap();
 /// let params = LargeFaceParams { target_triangles: 400, ..LargeFaceParams::default() };
-/// let (copy, path) = simplify_face(&mesh.vertices, &mesh.triangles, &params).unwrap();
+/// let (copy, path) = simplify_face(&mesh.vertices, &mesh.triangles, &params, &[7]).unwrap();
 /// // MediaPipe's canonical face is exactly mirror-symmetric.
 /// assert_eq!(path, SimplifyPath::Mirrored);
 /// assert!(copy.triangles.len() < 600);
-/// ```
-pub fn simplify_face(
-    vertices: &[DVec3],
-    triangles: &[[u32; 3]],
-    params: &LargeFaceParams,
-) -> Result<(Simplified, SimplifyPath), SimplifyError> {
-    simplify_face_keeping(vertices, triangles, params, &[])
-}
-
-/// [`simplify_face`] that keeps the vertices `keep` (indices into `vertices`; out-of-range
-/// ones are ignored) in the copy. Kept border vertices anchor the border's resampling
-/// ([`crate::copy::border_locks_anchored`]). On a mirror-symmetric face a kept vertex
-/// keeps its mirror image too.
-///
-/// ```
-/// use facebem::copy::simplify::simplify_face_keeping;
-/// use facebem::copy::LargeFaceParams;
-/// let mesh = facebem::input::default_face().unwrap();
-/// let params = LargeFaceParams { target_triangles: 300, ..LargeFaceParams::default() };
-/// let (copy, _) = simplify_face_keeping(&mesh.vertices, &mesh.triangles, &params, &[7]).unwrap();
 /// assert!(copy.original_vertex.contains(&7));
 /// ```
-pub fn simplify_face_keeping(
+pub fn simplify_face(
     vertices: &[DVec3],
     triangles: &[[u32; 3]],
     params: &LargeFaceParams,

@@ -105,24 +105,44 @@ pub enum Opened {
 /// an OBJ, or a glTF/GLB face.
 ///
 /// Only a regular file is opened (a FIFO or device is refused without blocking on it), and
-/// face meshes are held to the default [`InputLimits`]; see [`open_with_limits`].
+/// face meshes are held to the default [`InputLimits`]; see [`OpenOptions`] for others.
 pub fn open(path: &Path) -> Result<Opened, OpenError> {
-    open_with_limits(path, &InputLimits::default())
+    OpenOptions::default().open(path)
 }
 
-/// Like [`open`], with explicit size limits for face meshes (rig files are read up to
-/// [`cache::MAX_RIG_BYTES`]).
-pub fn open_with_limits(path: &Path, limits: &InputLimits) -> Result<Opened, OpenError> {
-    let rig_limits = InputLimits {
-        max_file_bytes: limits.max_file_bytes.max(cache::MAX_RIG_BYTES),
-        ..*limits
-    };
-    let bytes = read_bytes(path, &rig_limits)?;
-    if cache::is_cache(&bytes) {
-        return Ok(Opened::Model(Box::new(cache::from_bytes(path, &bytes)?)));
+/// How [`open`] reads a file: the size limits for face meshes (rig files are read up to
+/// [`cache::MAX_RIG_BYTES`], or the face limit if that is larger).
+///
+/// ```
+/// use facebem::input::{OpenError, OpenOptions};
+/// use face_prep::InputLimits;
+/// let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+///     .join("assets/mediapipe_canonical_4loop.obj");
+/// let small = OpenOptions { limits: InputLimits { max_triangles: 100, ..InputLimits::default() } };
+/// assert!(matches!(small.open(&path), Err(OpenError::Face { .. })));
+/// assert!(OpenOptions::default().open(&path).is_ok());
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct OpenOptions {
+    /// Size limits of a face mesh file and its mesh.
+    pub limits: InputLimits,
+}
+
+impl OpenOptions {
+    /// Opens `path` (see [`open`]).
+    pub fn open(&self, path: &Path) -> Result<Opened, OpenError> {
+        let limits = &self.limits;
+        let rig_limits = InputLimits {
+            max_file_bytes: limits.max_file_bytes.max(cache::MAX_RIG_BYTES),
+            ..*limits
+        };
+        let bytes = read_bytes(path, &rig_limits)?;
+        if cache::is_cache(&bytes) {
+            return Ok(Opened::Model(Box::new(cache::from_bytes(path, &bytes)?)));
+        }
+        let (mesh, obj_source) = face_from_bytes(path, &bytes, limits)?;
+        Ok(Opened::Face { mesh, obj_source })
     }
-    let (mesh, obj_source) = face_from_bytes(path, &bytes, limits)?;
-    Ok(Opened::Face { mesh, obj_source })
 }
 
 /// Reads a face mesh file (OBJ, glTF, GLB), keeping its layout as OBJ text for exports: the

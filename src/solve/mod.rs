@@ -207,7 +207,7 @@ fn run_bem(
         precision,
         ..SolveParams::default()
     };
-    ResponseBasis::compute_kinds(mesh, material, kinds, groups, &params, &bem_control).map_err(
+    ResponseBasis::compute(mesh, material, kinds, groups, &params, &bem_control).map_err(
         |e| match e {
             bem_core::BemError::Cancelled => SolveError::Cancelled,
             e => SolveError::Bem(e),

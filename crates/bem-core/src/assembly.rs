@@ -21,8 +21,8 @@ use crate::kernels::{Block, KernelConstants};
 use crate::params::{Precision, RigidModes, SolveParams};
 use crate::quadrature::ElementQuad;
 use crate::{
-    BemError, Control, ElementKind, Loads, MIXED_MIN_UNKNOWNS, Material, MemoryEstimate, Stage,
-    SurfaceMesh, tangent_frame,
+    BemError, Control, ElementKind, ElementKinds, Loads, MIXED_MIN_UNKNOWNS, Material,
+    MemoryEstimate, Stage, SurfaceMesh, tangent_frame,
 };
 
 /// The assembled dense system: `matrix · x = rhs`, x = (u on traction-prescribed elements,
@@ -144,28 +144,10 @@ impl LinearSystem {
     /// assert_eq!(solutions.len(), 2);
     /// assert_eq!(solutions[0].displacement[pulled], DVec3::new(0.01, 0.0, 0.0));
     /// ```
-    pub fn assemble(
-        mesh: &SurfaceMesh,
-        material: &Material,
-        prescribed: &[bool],
-        loads: &Loads,
-        params: &SolveParams,
-        control: &Control<'_>,
-    ) -> Result<Self, BemError> {
-        if prescribed.len() != mesh.element_count() {
-            return Err(BemError::WrongLength {
-                what: "prescribed mask",
-                expected: mesh.element_count(),
-                got: prescribed.len(),
-            });
-        }
-        let kinds = ElementKind::from_mask(prescribed);
-        Self::assemble_kinds(mesh, material, &kinds, loads, params, control)
-    }
-
-    /// [`LinearSystem::assemble`] with any [`ElementKind`] per element, including sliding
-    /// contact. A body is held when some element of it is displacement-prescribed or sliding
-    /// (sliding on one plane alone leaves it free to slide: the condition check refuses that).
+    ///
+    /// Any [`ElementKind`] per element works too, including sliding contact. A body is held
+    /// when some element of it is displacement-prescribed or sliding (sliding on one plane
+    /// alone leaves it free to slide: the condition check refuses that).
     ///
     /// ```
     /// use bem_core::{shapes, Control, ElementKind, LinearSystem, Loads, Material, SolveParams};
@@ -187,22 +169,24 @@ impl LinearSystem {
     ///     loads.set(e, 0, -0.001 * mesh.normal(e)).unwrap();
     /// }
     /// let m = Material::new(0.45, 1.0).unwrap();
-    /// let system = LinearSystem::assemble_kinds(&mesh, &m, &kinds, &loads, &SolveParams::default(), &Control::default()).unwrap();
+    /// let system = LinearSystem::assemble(&mesh, &m, &kinds, &loads, &SolveParams::default(), &Control::default()).unwrap();
     /// let s = system.solve(&Control::default()).unwrap().remove(0);
     /// // sliding elements stay on their support: no normal displacement
     /// for e in (0..n).filter(|&e| kinds[e] == ElementKind::Sliding) {
     ///     assert!(s.displacement[e].dot(mesh.normal(e)).abs() < 1e-12);
     /// }
     /// ```
-    pub fn assemble_kinds(
+    pub fn assemble<K: ElementKinds + ?Sized>(
         mesh: &SurfaceMesh,
         material: &Material,
-        kinds: &[ElementKind],
+        kinds: &K,
         loads: &Loads,
         params: &SolveParams,
         control: &Control<'_>,
     ) -> Result<Self, BemError> {
         let n = mesh.element_count();
+        let kinds = kinds.kinds_of(n)?;
+        let kinds: &[ElementKind] = &kinds;
         let prescribed: Vec<bool> = kinds
             .iter()
             .map(|&k| k == ElementKind::Displacement)

@@ -1,6 +1,7 @@
 //! Boundary conditions and prescribed values.
 
 use glam::DVec3;
+use std::borrow::Cow;
 
 use crate::BemError;
 
@@ -69,6 +70,66 @@ impl ElementKind {
                 }
             })
             .collect()
+    }
+}
+
+/// The boundary condition of every element, given as an [`ElementKind`] per element or as a
+/// prescribed mask (`true`: displacement prescribed, `false`: traction): what
+/// [`crate::LinearSystem::assemble`] and [`crate::ResponseBasis::compute`] take.
+///
+/// ```
+/// use bem_core::{ElementKind, ElementKinds};
+/// let mask = vec![true, false];
+/// assert_eq!(*mask.kinds(), [ElementKind::Displacement, ElementKind::Traction]);
+/// assert_eq!(mask.argument_name(), "prescribed mask");
+/// ```
+pub trait ElementKinds {
+    /// The kind of every element.
+    fn kinds(&self) -> Cow<'_, [ElementKind]>;
+    /// How a length error names the argument.
+    fn argument_name(&self) -> &'static str;
+    /// The kind of every element of a mesh of `n` elements ([`BemError::WrongLength`] when
+    /// there are not `n`).
+    fn kinds_of(&self, n: usize) -> Result<Cow<'_, [ElementKind]>, BemError> {
+        let kinds = self.kinds();
+        if kinds.len() != n {
+            return Err(BemError::WrongLength {
+                what: self.argument_name(),
+                expected: n,
+                got: kinds.len(),
+            });
+        }
+        Ok(kinds)
+    }
+}
+
+impl ElementKinds for [ElementKind] {
+    fn kinds(&self) -> Cow<'_, [ElementKind]> {
+        Cow::Borrowed(self)
+    }
+    fn argument_name(&self) -> &'static str {
+        "element kinds"
+    }
+}
+
+impl ElementKinds for [bool] {
+    fn kinds(&self) -> Cow<'_, [ElementKind]> {
+        Cow::Owned(ElementKind::from_mask(self))
+    }
+    fn argument_name(&self) -> &'static str {
+        "prescribed mask"
+    }
+}
+
+impl<T> ElementKinds for Vec<T>
+where
+    [T]: ElementKinds,
+{
+    fn kinds(&self) -> Cow<'_, [ElementKind]> {
+        self.as_slice().kinds()
+    }
+    fn argument_name(&self) -> &'static str {
+        self.as_slice().argument_name()
     }
 }
 

@@ -73,7 +73,7 @@ mod vertex;
 
 pub use assembly::LinearSystem;
 pub use assembly_report::{AssemblyReport, UnconvergedBlock};
-pub use bc::{BoundaryCondition, ElementKind, Loads, tangent_frame};
+pub use bc::{BoundaryCondition, ElementKind, ElementKinds, Loads, tangent_frame};
 pub use budget::MemoryEstimate;
 pub use control::{Control, Progress, Stage};
 pub use dense::DenseLu;

@@ -3,8 +3,8 @@
 use glam::DVec3;
 
 use crate::{
-    BemError, Control, ElementKind, LinearSystem, Loads, Material, Solution, SolveParams,
-    SolveReport, SurfaceMesh,
+    BemError, Control, ElementKind, ElementKinds, LinearSystem, Loads, Material, Solution,
+    SolveParams, SolveReport, SurfaceMesh,
 };
 
 /// A load pattern: `(element, value)`, the displacement of a displacement-prescribed element or
@@ -47,45 +47,21 @@ impl ResponseBasis {
     /// let mix = basis.combine_displacement(&[0.5, -1.0]).unwrap();
     /// assert_eq!(mix.len(), mesh.element_count());
     /// ```
-    pub fn compute(
+    ///
+    /// Any [`ElementKind`] per element works too: sliding elements keep zero normal
+    /// displacement and zero tangential traction except where a group sets a value (its normal
+    /// part a normal displacement, the rest a tangential traction).
+    pub fn compute<K: ElementKinds + ?Sized>(
         mesh: &SurfaceMesh,
         material: &Material,
-        prescribed: &[bool],
+        kinds: &K,
         groups: &[DisplacementGroup],
         params: &SolveParams,
         control: &Control<'_>,
     ) -> Result<Self, BemError> {
         let n = mesh.element_count();
-        if prescribed.len() != n {
-            return Err(BemError::WrongLength {
-                what: "prescribed mask",
-                expected: n,
-                got: prescribed.len(),
-            });
-        }
-        let kinds = ElementKind::from_mask(prescribed);
-        Self::compute_kinds(mesh, material, &kinds, groups, params, control)
-    }
-
-    /// [`ResponseBasis::compute`] with any [`ElementKind`] per element: sliding elements keep
-    /// zero normal displacement and zero tangential traction except where a group sets a value
-    /// (its normal part a normal displacement, the rest a tangential traction).
-    pub fn compute_kinds(
-        mesh: &SurfaceMesh,
-        material: &Material,
-        kinds: &[ElementKind],
-        groups: &[DisplacementGroup],
-        params: &SolveParams,
-        control: &Control<'_>,
-    ) -> Result<Self, BemError> {
-        let n = mesh.element_count();
-        if kinds.len() != n {
-            return Err(BemError::WrongLength {
-                what: "element kinds",
-                expected: n,
-                got: kinds.len(),
-            });
-        }
+        let kinds = kinds.kinds_of(n)?;
+        let kinds: &[ElementKind] = &kinds;
         let mut loads = Loads::new(n, groups.len());
         for (g, group) in groups.iter().enumerate() {
             for &(element, value) in group {
@@ -99,7 +75,7 @@ impl ResponseBasis {
                 loads.set(element, g, value)?;
             }
         }
-        let system = LinearSystem::assemble_kinds(mesh, material, kinds, &loads, params, control)?;
+        let system = LinearSystem::assemble(mesh, material, kinds, &loads, params, control)?;
         let (responses, report) = system.solve_with_report(control)?;
         Ok(Self { responses, report })
     }

@@ -61,7 +61,7 @@ fn solve(
     group: DisplacementGroup,
 ) -> bem_core::Solution {
     let m = Material::new(0.3, 1.0).unwrap();
-    ResponseBasis::compute_kinds(
+    ResponseBasis::compute(
         mesh,
         &m,
         kinds,
@@ -160,7 +160,7 @@ fn sliding_on_one_plane_alone_is_refused() {
         .filter(|&e| mesh.normal(e).z > 0.5)
         .map(|e| (e, DVec3::new(0.0, 0.0, -0.01)))
         .collect();
-    let r = ResponseBasis::compute_kinds(
+    let r = ResponseBasis::compute(
         &mesh,
         &m,
         &kinds,

@@ -34,7 +34,7 @@ static LIMITS: std::sync::OnceLock<face_prep::InputLimits> = std::sync::OnceLock
 /// Opens a face mesh or rig under the command line's input limits.
 fn open(path: &Path) -> Result<Opened, facebem::input::OpenError> {
     let limits = LIMITS.get().copied().unwrap_or_default();
-    facebem::input::open_with_limits(path, &limits)
+    facebem::input::OpenOptions { limits }.open(path)
 }
 
 fn main() -> ExitCode {

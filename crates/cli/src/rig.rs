@@ -139,9 +139,12 @@ pub(crate) fn rig(
     if let Some(file) = muscles {
         let rig = facebem::prep_rig(&mesh, &params)?;
         let limits = LIMITS.get().copied().unwrap_or_default();
-        let list =
-            face_prep::muscle_file::load_with_limits(file, rig.shell.element_count(), &limits)
-                .with_context(|| format!("muscle file {}", file.display()))?;
+        let list = face_prep::muscle_file::ReadOptions {
+            element_count: rig.shell.element_count(),
+            limits,
+        }
+        .load(file)
+        .with_context(|| format!("muscle file {}", file.display()))?;
         params.muscles = Some(list);
     }
     let model = compute(&mesh, obj_source, &params)?;

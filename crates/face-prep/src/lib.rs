@@ -37,8 +37,7 @@ pub use error::{LoopSummary, MuscleFileError, ObjLineError, PrepError};
 pub use features::{Box2, FeatureBoxes};
 pub use gltf_read::GltfError;
 pub use input::face_mesh::{
-    FaceMesh, GltfFaceData, WELD_RELATIVE_TOLERANCE, gltf_face_data, load_face,
-    load_face_mesh_named, load_face_with_limits,
+    FaceMesh, GltfFaceData, LoadOptions, WELD_RELATIVE_TOLERANCE, gltf_face_data, load_face,
 };
 pub use limits::InputLimits;
 pub use muscle_kind::{ControlSpec, Generator, MuscleKind, Placed, Side};

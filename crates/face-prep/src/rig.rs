@@ -240,25 +240,9 @@ pub struct FaceRig {
 }
 
 impl FaceRig {
-    /// Builds the rig with automatically derived feature boxes.
+    /// Builds the rig with automatically derived feature boxes; [`FaceRig::with_boxes`] then
+    /// places the controls from user-adjusted ones.
     pub fn build(face: &FaceMesh, params: &RigParams) -> Result<FaceRig, PrepError> {
-        FaceRig::build_impl(face, params, None)
-    }
-
-    /// Builds the rig with the given (user-adjusted) feature boxes, canonical frame.
-    pub fn build_with_boxes(
-        face: &FaceMesh,
-        params: &RigParams,
-        boxes: FeatureBoxes,
-    ) -> Result<FaceRig, PrepError> {
-        FaceRig::build_impl(face, params, Some(boxes))
-    }
-
-    fn build_impl(
-        face: &FaceMesh,
-        params: &RigParams,
-        boxes: Option<FeatureBoxes>,
-    ) -> Result<FaceRig, PrepError> {
         params.validate()?;
         let loops = topology::validate(&face.vertices, &face.triangles)?;
         topology::check_four_loops(&face.vertices, &loops)?;
@@ -269,16 +253,9 @@ impl FaceRig {
             .iter()
             .map(|&p| canonical_from_input.transform_point3(p))
             .collect();
-        let auto = FeatureBoxes::from_loops(&verts, &loops)?;
-        let face_size = auto.face.width().max(auto.face.height());
+        let boxes = FeatureBoxes::from_loops(&verts, &loops)?;
+        let face_size = boxes.face.width().max(boxes.face.height());
         let units = UnitChoice::decide(params.units, interocular_distance(&verts, &loops));
-        let boxes = match boxes {
-            Some(b) => {
-                b.check()?;
-                b
-            }
-            None => auto,
-        };
         // Scrambled geometry (a `v` line swapped) is refused before the shell repair, which
         // cannot open it and would spend O(triangles²) per round trying.
         check_not_scrambled(&verts, &face.triangles)?;
@@ -360,14 +337,25 @@ impl FaceRig {
         };
     }
 
-    /// The same rig with new feature boxes: the shell is kept; skull and the standard
-    /// controls are recomputed from the boxes (custom muscles are dropped).
-    pub fn rebuild_with_boxes(&self, boxes: FeatureBoxes) -> Result<FaceRig, PrepError> {
+    /// The rig with new (user-adjusted) feature boxes, canonical frame: the shell is kept; the
+    /// skull and the standard controls are placed again from the boxes (custom muscles are
+    /// dropped), exactly as a rig built with those boxes from the start.
+    ///
+    /// ```
+    /// use face_prep::{FaceRig, RigParams, load_face};
+    /// let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+    ///     .join("../../assets/mediapipe_canonical_4loop.obj");
+    /// let rig = FaceRig::build(&load_face(&path).unwrap(), &RigParams::default()).unwrap();
+    /// let mut boxes = rig.boxes;
+    /// boxes.skull.min.y = boxes.nose.center().y; // the forehead box down to the nose
+    /// let moved = rig.clone().with_boxes(boxes).unwrap();
+    /// assert!(moved.skull.len() > rig.skull.len());
+    /// ```
+    pub fn with_boxes(mut self, boxes: FeatureBoxes) -> Result<FaceRig, PrepError> {
         boxes.check()?;
-        let mut rig = self.clone();
-        rig.boxes = boxes;
-        rig.place_muscles();
-        Ok(rig)
+        self.boxes = boxes;
+        self.place_muscles();
+        Ok(self)
     }
 
     /// Replaces the muscles (e.g. from an edited muscle file). Every element must exist, chains

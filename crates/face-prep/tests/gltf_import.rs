@@ -1,6 +1,15 @@
 //! glTF/GLB import: node transforms, mesh selection by name, vertex order map.
 
-use face_prep::{FaceMesh, FaceRig, PrepError, RigParams, load_face, load_face_mesh_named};
+use face_prep::{FaceMesh, FaceRig, LoadOptions, PrepError, RigParams, load_face};
+
+/// The glTF mesh named `name` of the file at `path`.
+fn load_face_mesh_named(path: &std::path::Path, name: &str) -> Result<FaceMesh, PrepError> {
+    LoadOptions {
+        mesh_name: Some(name.to_string()),
+        ..LoadOptions::default()
+    }
+    .load(path)
+}
 use glam::{DAffine3, DQuat, DVec3};
 use std::path::PathBuf;
 
@@ -116,13 +125,13 @@ fn glb_node_transforms_and_named_mesh() {
         load_face(&path),
         Err(PrepError::WrongLoopCount { count: 1, .. })
     ));
-    match load_face_mesh_named(&path, Some("nope")) {
+    match load_face_mesh_named(&path, "nope") {
         Err(PrepError::GltfMeshNotFound { available, .. }) => {
             assert_eq!(available, vec!["dummy", "face"])
         }
         other => panic!("{other:?}"),
     }
-    let g = load_face_mesh_named(&path, Some("face")).unwrap();
+    let g = load_face_mesh_named(&path, "face").unwrap();
     assert_eq!(g.vertices.len(), face.vertices.len());
     assert_eq!(g.triangles, face.triangles);
     let world = DAffine3::from_scale_rotation_translation(DVec3::splat(scale), rot, t);
@@ -184,14 +193,14 @@ fn gltf_with_external_buffer_loads_relative_to_its_file() {
     let dir = tempfile::tempdir().unwrap();
     std::fs::write(dir.path().join("face.gltf"), json).unwrap();
     std::fs::write(dir.path().join("face.bin"), bin).unwrap();
-    let g = load_face_mesh_named(&dir.path().join("face.gltf"), Some("face")).unwrap();
+    let g = load_face_mesh_named(&dir.path().join("face.gltf"), "face").unwrap();
     assert_eq!(g.triangles, face.triangles);
     for (a, b) in g.vertices.iter().zip(&face.vertices) {
         assert!(a.distance(*b) <= 1e-6 * 20.0);
     }
     // The buffer file missing is a glTF error, not a panic.
     std::fs::remove_file(dir.path().join("face.bin")).unwrap();
-    let err = load_face_mesh_named(&dir.path().join("face.gltf"), Some("face")).unwrap_err();
+    let err = load_face_mesh_named(&dir.path().join("face.gltf"), "face").unwrap_err();
     assert!(matches!(err, PrepError::Gltf(_)), "{err}");
 }
 

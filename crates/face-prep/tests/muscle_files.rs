@@ -273,7 +273,7 @@ fn adjusted_boxes_move_the_muscles_and_skull() {
     let mut boxes = rig.boxes;
     // Grow the forehead box down to the nose: more back elements become skull.
     boxes.skull.min.y = boxes.nose.center().y;
-    let moved = rig.rebuild_with_boxes(boxes).unwrap();
+    let moved = rig.clone().with_boxes(boxes).unwrap();
     assert!(moved.skull.len() > rig.skull.len());
     let skull: std::collections::HashSet<u32> = moved.skull.iter().copied().collect();
     for m in &moved.muscles {
@@ -286,21 +286,23 @@ fn adjusted_boxes_move_the_muscles_and_skull() {
         .translated(DVec2::new(0.0, -0.1 * boxes.mouth.height()));
     let derived =
         face_prep::FeatureBoxes::derive(boxes.face, boxes.eye_l, boxes.eye_r, boxes.mouth).unwrap();
-    let moved = rig.rebuild_with_boxes(derived).unwrap();
+    let moved = rig.clone().with_boxes(derived).unwrap();
     let k = MuscleKind::MentalisL.index();
     assert_ne!(moved.muscles[k].front_chain, rig.muscles[k].front_chain);
     // An empty box is refused.
     let mut bad = rig.boxes;
     bad.nose.max.x = bad.nose.min.x;
     assert!(matches!(
-        rig.rebuild_with_boxes(bad),
+        rig.clone().with_boxes(bad),
         Err(PrepError::InvalidBox { name: "FBNose", .. })
     ));
-    // Same boxes → same rig as build_with_boxes from scratch.
+    // Same boxes → the same muscles on the face loaded and built again.
     let p = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
         .join("../../assets/ict_narrow_face_dec2500_4loop.obj");
-    let fresh =
-        FaceRig::build_with_boxes(&load_face(&p).unwrap(), &RigParams::default(), derived).unwrap();
+    let fresh = FaceRig::build(&load_face(&p).unwrap(), &RigParams::default())
+        .unwrap()
+        .with_boxes(derived)
+        .unwrap();
     assert_eq!(fresh.muscles, moved.muscles);
 }
 

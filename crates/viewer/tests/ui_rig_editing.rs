@@ -213,7 +213,7 @@ fn edited_feature_boxes_re_place_muscles_and_skull_and_invalid_boxes_are_refused
     assert_eq!(boxes.mouth, edited);
     assert_eq!(rebuilt.rig.boxes, boxes);
     assert_eq!(rebuilt.params.muscles, None);
-    let expected = model.rig.rebuild_with_boxes(boxes).unwrap();
+    let expected = model.rig.clone().with_boxes(boxes).unwrap();
     assert_eq!(rebuilt.rig.muscles, expected.muscles);
     assert_eq!(rebuilt.rig.skull, expected.skull);
     assert_ne!(

@@ -221,23 +221,87 @@ fn read_chain(
 
 /// Parses a muscle file; every index must be below `element_count` (the shell's element count).
 /// At most [`crate::InputLimits::max_muscles`] muscles of the default limits; see
-/// [`read_str_with_limits`].
+/// [`ReadOptions`] for others.
 pub fn read_str(text: &str, element_count: usize) -> Result<Vec<Muscle>, MuscleFileError> {
-    read_str_with_limits(text, element_count, &crate::InputLimits::default())
+    ReadOptions::new(element_count).read_str(text)
 }
 
-/// Like [`read_str`], with explicit limits (`limits.max_muscles` muscles at most; the chains
-/// are bounded by `element_count`, since an element may appear once per chain).
+/// How a muscle file is read: the shell's element count every index must be below, and the
+/// input limits (file bytes, muscle count; the chains are bounded by `element_count`, since an
+/// element may appear once per chain). [`read_str`], [`read`] and [`load`] use the default
+/// limits.
 ///
 /// ```
-/// use face_prep::{InputLimits, muscle_file};
+/// use face_prep::{InputLimits, muscle_file::{self, ReadOptions}};
 /// let text = "[Name]\nA\n[Size]\n1\n[Data]\n0\n[Name]\nB\n[Size]\n1\n[Data]\n1\n";
-/// let one = InputLimits { max_muscles: 1, ..InputLimits::default() };
-/// let err = muscle_file::read_str_with_limits(text, 2, &one).unwrap_err();
+/// let one = ReadOptions {
+///     limits: InputLimits { max_muscles: 1, ..InputLimits::default() },
+///     ..ReadOptions::new(2)
+/// };
+/// let err = one.read_str(text).unwrap_err();
 /// assert!(err.to_string().contains("more than 1 muscles"), "{err}");
 /// assert_eq!(muscle_file::read_str(text, 2).unwrap().len(), 2);
 /// ```
-pub fn read_str_with_limits(
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ReadOptions {
+    /// The shell's element count: every index must be below it.
+    pub element_count: usize,
+    /// File size and muscle count limits.
+    pub limits: crate::InputLimits,
+}
+
+impl ReadOptions {
+    /// Options for a shell of `element_count` elements, under the default limits.
+    pub fn new(element_count: usize) -> ReadOptions {
+        ReadOptions {
+            element_count,
+            limits: crate::InputLimits::default(),
+        }
+    }
+
+    /// Parses a muscle file's text.
+    pub fn read_str(&self, text: &str) -> Result<Vec<Muscle>, MuscleFileError> {
+        parse(text, self.element_count, &self.limits)
+    }
+
+    /// Reads a muscle file from a reader (at most `limits.max_file_bytes` bytes).
+    pub fn read(&self, reader: impl Read) -> Result<Vec<Muscle>, MuscleFileError> {
+        let limit = self.limits.max_file_bytes;
+        let mut text = String::new();
+        reader
+            .take(limit.saturating_add(1))
+            .read_to_string(&mut text)?;
+        if text.len() as u64 > limit {
+            return Err(MuscleFileError::Io(std::io::Error::other(format!(
+                "muscle file larger than the input limit of {limit} bytes"
+            ))));
+        }
+        self.read_str(&text)
+    }
+
+    /// Reads a muscle file from disk: a regular file only (a FIFO or device is refused
+    /// unopened), its size checked against `limits.max_file_bytes` before reading.
+    pub fn load(&self, path: &Path) -> Result<Vec<Muscle>, MuscleFileError> {
+        let meta = std::fs::metadata(path)?;
+        if !meta.is_file() {
+            return Err(MuscleFileError::Io(std::io::Error::other(format!(
+                "{} is not a regular file",
+                path.display()
+            ))));
+        }
+        if meta.len() > self.limits.max_file_bytes {
+            return Err(MuscleFileError::Io(std::io::Error::other(format!(
+                "{} is {} bytes, above the input limit of {} bytes",
+                path.display(),
+                meta.len(),
+                self.limits.max_file_bytes
+            ))));
+        }
+        self.read(std::fs::File::open(path)?)
+    }
+}
+
+fn parse(
     text: &str,
     element_count: usize,
     limits: &crate::InputLimits,
@@ -296,26 +360,7 @@ pub fn read_str_with_limits(
 
 /// Like [`read_str`], from a reader (at most [`crate::InputLimits::max_file_bytes`] bytes).
 pub fn read(reader: impl Read, element_count: usize) -> Result<Vec<Muscle>, MuscleFileError> {
-    read_with_limits(reader, element_count, &crate::InputLimits::default())
-}
-
-/// Like [`read`], with explicit limits (file bytes and muscle count).
-pub fn read_with_limits(
-    reader: impl Read,
-    element_count: usize,
-    limits: &crate::InputLimits,
-) -> Result<Vec<Muscle>, MuscleFileError> {
-    let limit = limits.max_file_bytes;
-    let mut text = String::new();
-    reader
-        .take(limit.saturating_add(1))
-        .read_to_string(&mut text)?;
-    if text.len() as u64 > limit {
-        return Err(MuscleFileError::Io(std::io::Error::other(format!(
-            "muscle file larger than the input limit of {limit} bytes"
-        ))));
-    }
-    read_str_with_limits(&text, element_count, limits)
+    ReadOptions::new(element_count).read(reader)
 }
 
 /// Formats muscles in the file format (back chain blocks only for muscles that have one).
@@ -357,32 +402,7 @@ pub fn save(path: &Path, muscles: &[Muscle]) -> Result<(), MuscleFileError> {
 }
 
 /// Reads a muscle file from disk (a regular file only: a FIFO or device is refused unopened),
-/// under the default limits; see [`load_with_limits`].
+/// under the default limits; see [`ReadOptions`] for others.
 pub fn load(path: &Path, element_count: usize) -> Result<Vec<Muscle>, MuscleFileError> {
-    load_with_limits(path, element_count, &crate::InputLimits::default())
-}
-
-/// Like [`load`], with explicit limits (file bytes, checked from the file's size before
-/// reading, and muscle count).
-pub fn load_with_limits(
-    path: &Path,
-    element_count: usize,
-    limits: &crate::InputLimits,
-) -> Result<Vec<Muscle>, MuscleFileError> {
-    let meta = std::fs::metadata(path)?;
-    if !meta.is_file() {
-        return Err(MuscleFileError::Io(std::io::Error::other(format!(
-            "{} is not a regular file",
-            path.display()
-        ))));
-    }
-    if meta.len() > limits.max_file_bytes {
-        return Err(MuscleFileError::Io(std::io::Error::other(format!(
-            "{} is {} bytes, above the input limit of {} bytes",
-            path.display(),
-            meta.len(),
-            limits.max_file_bytes
-        ))));
-    }
-    read_with_limits(std::fs::File::open(path)?, element_count, limits)
+    ReadOptions::new(element_count).load(path)
 }

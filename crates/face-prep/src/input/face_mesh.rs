@@ -501,7 +501,8 @@ fn gltf_mesh(
 }
 
 /// Loads a face mesh, dispatching on the extension: `.obj` (tobj), `.gltf` or `.glb` (gltf,
-/// first mesh). See [`load_face_mesh_named`] to pick a glTF mesh by name.
+/// first mesh), under the default [`InputLimits`]. See [`LoadOptions`] to pick a glTF mesh by
+/// name or set other limits.
 ///
 /// ```
 /// let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -510,42 +511,49 @@ fn gltf_mesh(
 /// assert_eq!(face.triangles.len(), 852);
 /// ```
 pub fn load_face(path: &Path) -> Result<FaceMesh, PrepError> {
-    load_face_mesh_named(path, None)
+    LoadOptions::default().load(path)
 }
 
-/// Like [`load_face`]; for glTF/GLB, `mesh_name` selects the mesh (ignored for OBJ).
-pub fn load_face_mesh_named(path: &Path, mesh_name: Option<&str>) -> Result<FaceMesh, PrepError> {
-    load_face_with_limits(path, mesh_name, &InputLimits::default())
-}
-
-/// Like [`load_face_mesh_named`], with explicit input size limits (file bytes, positions,
-/// triangles), checked before the data is allocated.
+/// How a face mesh file is read: which glTF/GLB mesh (`None`: the first; ignored for OBJ) and
+/// the input size limits (file bytes, positions, triangles), checked before the data is
+/// allocated. [`load_face`] uses the defaults.
 ///
 /// ```
-/// use face_prep::{InputLimits, PrepError};
+/// use face_prep::{InputLimits, LoadOptions, PrepError};
 /// let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
 ///     .join("../../assets/mediapipe_canonical_4loop.obj");
-/// let small = InputLimits { max_triangles: 100, ..InputLimits::default() };
-/// let err = face_prep::load_face_with_limits(&path, None, &small).unwrap_err();
+/// let small = LoadOptions {
+///     limits: InputLimits { max_triangles: 100, ..InputLimits::default() },
+///     ..LoadOptions::default()
+/// };
+/// let err = small.load(&path).unwrap_err();
 /// assert!(matches!(err, PrepError::TooLarge { what: "triangles", .. }), "{err}");
 /// ```
-pub fn load_face_with_limits(
-    path: &Path,
-    mesh_name: Option<&str>,
-    limits: &InputLimits,
-) -> Result<FaceMesh, PrepError> {
-    let ext = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .unwrap_or("")
-        .to_ascii_lowercase();
-    let read = || read_input_file(path, limits);
-    match ext.as_str() {
-        "obj" => FaceMesh::from_obj_bytes(&read()?, limits),
-        "gltf" | "glb" => gltf_mesh(&read()?, path.parent(), mesh_name, limits),
-        _ => Err(PrepError::UnsupportedExtension {
-            path: path.to_owned(),
-            extension: ext,
-        }),
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct LoadOptions {
+    /// The glTF/GLB mesh to read, by name (`None`: the first mesh).
+    pub mesh_name: Option<String>,
+    /// Size limits of the file and the mesh.
+    pub limits: InputLimits,
+}
+
+impl LoadOptions {
+    /// Loads the face mesh at `path`, dispatching on the extension.
+    pub fn load(&self, path: &Path) -> Result<FaceMesh, PrepError> {
+        let (mesh_name, limits) = (self.mesh_name.as_deref(), &self.limits);
+        let ext = path
+            .extension()
+            .and_then(|e| e.to_str())
+            .unwrap_or("")
+            .to_ascii_lowercase();
+        let read = || read_input_file(path, limits);
+        match ext.as_str() {
+            "obj" => FaceMesh::from_obj_bytes(&read()?, limits),
+            "gltf" | "glb" => gltf_mesh(&read()?, path.parent(), mesh_name, limits),
+            _ => Err(PrepError::UnsupportedExtension {
+                path: path.to_owned(),
+                extension: ext,
+            }),
+        }
     }
 }

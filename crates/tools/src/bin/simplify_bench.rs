@@ -42,7 +42,7 @@ fn main() -> anyhow::Result<()> {
         });
         let mut path = None;
         let new = median_ms(|| {
-            path = simplify_face(&base.vertices, &base.triangles, &params)
+            path = simplify_face(&base.vertices, &base.triangles, &params, &[])
                 .ok()
                 .map(|(_, p)| p);
         });
