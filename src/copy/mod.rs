@@ -24,6 +24,7 @@ pub mod remesh;
 pub mod remesh_face;
 pub mod rolled_in;
 pub mod simplify;
+pub mod symmetrize;
 
 use glam::DVec3;
 use serde::{Deserialize, Serialize};

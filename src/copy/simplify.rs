@@ -44,6 +44,14 @@ pub enum SimplifyPath {
     Remeshed,
     /// Remeshed as written, without a canonical frame.
     RemeshedAsWritten,
+    /// [`SimplifyPath::Mirrored`] of the mirror-meshed stand-in of a face that is
+    /// mirror-symmetric in shape but not in its triangles ([`crate::copy::symmetrize`]).
+    SymmetrizedMirrored,
+    /// [`SimplifyPath::RemeshedMirrored`] of that stand-in.
+    RemeshedSymmetrized,
+    /// Not reduced, only made mirror-meshed: the cut left half and its mirror image (a face
+    /// below the simplification threshold, symmetric in shape but not in its triangles).
+    Symmetrized,
 }
 
 impl SimplifyPath {
@@ -63,6 +71,15 @@ impl SimplifyPath {
             }
             SimplifyPath::Remeshed => "by remeshing in the face's canonical frame and order",
             SimplifyPath::RemeshedAsWritten => "by remeshing as written, without a canonical frame",
+            SimplifyPath::SymmetrizedMirrored => {
+                "as a mirrored half, cut along the midplane (symmetric in shape, not in its triangles)"
+            }
+            SimplifyPath::RemeshedSymmetrized => {
+                "by remeshing a half cut along the midplane and mirroring it (symmetric in shape, not in its triangles)"
+            }
+            SimplifyPath::Symmetrized => {
+                "only by mirroring a half cut along the midplane (symmetric in shape, not in its triangles)"
+            }
         }
     }
 }
@@ -163,6 +180,24 @@ pub(crate) struct Canonical {
 }
 
 impl Canonical {
+    /// A copy of this canonical mesh (`s`, its vertices indexing this one's) in the input's
+    /// frame, its vertices mapped to the input's.
+    pub(crate) fn to_input(&self, s: &Simplified) -> Simplified {
+        Simplified {
+            vertices: s
+                .vertices
+                .iter()
+                .map(|&p| self.input_from_grid.transform_point3(p))
+                .collect(),
+            triangles: s.triangles.clone(),
+            original_vertex: s
+                .original_vertex
+                .iter()
+                .map(|&c| self.input_vertex[c as usize])
+                .collect(),
+        }
+    }
+
     pub(crate) fn of(vertices: &[DVec3], triangles: &[[u32; 3]]) -> Option<Canonical> {
         let loops = face_prep::topology::validate(vertices, triangles).ok()?;
         let (canonical_from_input, face_loops) =

@@ -1,0 +1,282 @@
+//! Issue 30, item 1: a face that is mirror-symmetric in shape gets mirror-symmetric responses
+//! whatever its triangulation.
+
+mod support;
+
+use face_prep::MuscleKind;
+use facebem::copy::simplify::SimplifyPath;
+use facebem::report::measure::{FaceLandmarks, SurfacePoint};
+use facebem::{Control, FaceModel, PipelineParams, build_face_model};
+use glam::DVec3;
+
+/// `mesh` with interior edges flipped at random (seeded): each triangle at most once, only
+/// where both new triangles face the old ones' way — a quad mesh split along other
+/// diagonals. The vertices stay where they are, so the shape changes only by how far the
+/// flipped quads are from planar.
+pub fn retriangulated(mesh: &face_prep::FaceMesh, seed: u64) -> face_prep::FaceMesh {
+    let mut state = seed
+        .wrapping_mul(6364136223846793005)
+        .wrapping_add(1442695040888963407);
+    let mut next = move || {
+        state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (state >> 33) as u32
+    };
+    let mut triangles = mesh.triangles.clone();
+    let mut edges: std::collections::BTreeMap<(u32, u32), Vec<usize>> = Default::default();
+    for (t, tri) in triangles.iter().enumerate() {
+        for k in 0..3 {
+            let (a, b) = (tri[k], tri[(k + 1) % 3]);
+            edges.entry((a.min(b), a.max(b))).or_default().push(t);
+        }
+    }
+    let mut interior: Vec<(u32, u32)> = edges
+        .iter()
+        .filter(|(_, ts)| ts.len() == 2)
+        .map(|(&e, _)| e)
+        .collect();
+    for i in (1..interior.len()).rev() {
+        interior.swap(i, next() as usize % (i + 1));
+    }
+    let normal = |v: &[DVec3], t: [u32; 3]| {
+        (v[t[1] as usize] - v[t[0] as usize]).cross(v[t[2] as usize] - v[t[0] as usize])
+    };
+    let mut used = vec![false; triangles.len()];
+    for (a, b) in interior {
+        let [t1, t2] = [edges[&(a, b)][0], edges[&(a, b)][1]];
+        if used[t1] || used[t2] || next() % 2 == 0 {
+            continue;
+        }
+        let (p, q) = (triangles[t1], triangles[t2]);
+        let c = p.into_iter().find(|&v| v != a && v != b).unwrap();
+        let d = q.into_iter().find(|&v| v != a && v != b).unwrap();
+        if edges.contains_key(&(c.min(d), c.max(d))) {
+            continue;
+        }
+        let i = p.iter().position(|&v| v == c).unwrap();
+        let (x, y) = (p[(i + 1) % 3], p[(i + 2) % 3]);
+        let (n1, n2) = ([c, x, d], [c, d, y]);
+        let old = [normal(&mesh.vertices, p), normal(&mesh.vertices, q)];
+        let new = [normal(&mesh.vertices, n1), normal(&mesh.vertices, n2)];
+        if old.iter().any(|o| new.iter().any(|n| o.dot(*n) <= 0.0)) {
+            continue;
+        }
+        triangles[t1] = n1;
+        triangles[t2] = n2;
+        used[t1] = true;
+        used[t2] = true;
+        edges.insert((c.min(d), c.max(d)), vec![t1, t2]);
+    }
+    face_prep::FaceMesh {
+        vertices: mesh.vertices.clone(),
+        triangles,
+        input_to_vertex: mesh.input_to_vertex.clone(),
+    }
+}
+
+fn load(name: &str) -> face_prep::FaceMesh {
+    face_prep::LoadOptions::default()
+        .load(&support::asset(name))
+        .unwrap()
+}
+
+/// Largest RMS difference between each left control's shell response and its right partner's
+/// mirrored, as a fraction of the larger response's RMS, over the front elements of a rig
+/// solved on a mirror-symmetric shell (canonical frame, element centroids paired by mirror
+/// image).
+fn shell_asymmetry(m: &FaceModel) -> (f64, String) {
+    let shell = &m.rig.shell;
+    let centroid = |t: [u32; 3]| t.iter().map(|&v| shell.vertices[v as usize]).sum::<DVec3>() / 3.0;
+    let centroids: Vec<DVec3> = shell.triangles.iter().map(|&t| centroid(t)).collect();
+    let mirror_of: Vec<usize> = centroids
+        .iter()
+        .map(|p| {
+            let q = DVec3::new(-p.x, p.y, p.z);
+            (0..centroids.len())
+                .min_by(|&a, &b| {
+                    centroids[a]
+                        .distance_squared(q)
+                        .total_cmp(&centroids[b].distance_squared(q))
+                })
+                .unwrap()
+        })
+        .collect();
+    let mirrored = |d: DVec3| DVec3::new(-d.x, d.y, d.z);
+    let (mut worst, mut which) = (0.0f64, String::new());
+    for kind in MuscleKind::ALL
+        .into_iter()
+        .filter(|k| k.side() == face_prep::Side::Left)
+    {
+        let response =
+            |k: MuscleKind| &m.shell_element_response[m.basis.muscle_index(k.id()).unwrap()];
+        let (l, r) = (response(kind), response(kind.mirror()));
+        let n = centroids.len() as f64;
+        let diff = ((0..centroids.len())
+            .map(|e| (l[e] - mirrored(r[mirror_of[e]])).length_squared())
+            .sum::<f64>()
+            / n)
+            .sqrt();
+        let rms = |f: &[DVec3]| (f.iter().map(|d| d.length_squared()).sum::<f64>() / n).sqrt();
+        let ratio = diff / rms(l).max(rms(r));
+        if ratio > worst {
+            (worst, which) = (ratio, kind.id().to_string());
+        }
+    }
+    (worst, which)
+}
+
+/// Left field against the mirrored right field of every paired control, on a face whose
+/// vertices are mirror-symmetric (`mirror_of`): the largest RMS difference as a fraction of the
+/// larger field's RMS, and the largest difference at the mouth corners and brows in mm.
+fn asymmetry(m: &FaceModel) -> (f64, f64, String) {
+    let lm = FaceLandmarks::of(m).expect("four loops");
+    let c = lm.canonical_points(&m.mesh.vertices);
+    let mirror_of: Vec<usize> = c
+        .iter()
+        .map(|p| {
+            let q = DVec3::new(-p.x, p.y, p.z);
+            (0..c.len())
+                .min_by(|&a, &b| {
+                    c[a].distance_squared(q)
+                        .total_cmp(&c[b].distance_squared(q))
+                })
+                .unwrap()
+        })
+        .collect();
+    let pairs = [
+        (
+            SurfacePoint::vertex(lm.mouth_corner_l),
+            SurfacePoint::vertex(lm.mouth_corner_r),
+        ),
+        (lm.brow_point_l, lm.brow_point_r),
+        (lm.brow_inner_point_l, lm.brow_inner_point_r),
+    ];
+    let mirrored = |d: DVec3| DVec3::new(-d.x, d.y, d.z);
+    let (mut worst_rms, mut worst_mm, mut which) = (0.0f64, 0.0f64, String::new());
+    for kind in MuscleKind::ALL
+        .into_iter()
+        .filter(|k| k.side() == face_prep::Side::Left)
+    {
+        let field = |k: MuscleKind| -> Vec<DVec3> {
+            let i = m.basis.muscle_index(k.id()).unwrap();
+            m.basis.displacements[i]
+                .iter()
+                .map(|&d| lm.canonical_mm(-d))
+                .collect()
+        };
+        let (l, r) = (field(kind), field(kind.mirror()));
+        let rms =
+            |f: &dyn Fn(usize) -> f64| ((0..c.len()).map(f).sum::<f64>() / c.len() as f64).sqrt();
+        let diff = rms(&|v| (l[v] - mirrored(r[mirror_of[v]])).length_squared());
+        let larger = rms(&|v| l[v].length_squared()).max(rms(&|v| r[v].length_squared()));
+        if diff / larger > worst_rms {
+            worst_rms = diff / larger;
+            which = kind.id().to_string();
+        }
+        for (pl, pr) in pairs {
+            let d = (pl.sample(&l) - mirrored(pr.sample(&r))).length();
+            worst_mm = worst_mm.max(d);
+        }
+    }
+    (worst_rms, worst_mm, which)
+}
+
+/// MediaPipe's face with about a third of its interior edges flipped at random (seed 1; test
+/// face (a) of issue 30 at MediaPipe's size: the same vertices, other diagonals): symmetric
+/// in shape, not in its triangles. It is simulated on a mirror-meshed stand-in (its left half
+/// cut along the midplane and mirrored), so every paired control's shell response mirrors its
+/// partner's within 1 % RMS (on its own triangles the simulated pairs differed by up to 77 %
+/// RMS at the vertices), and the peeled vertices are decided on the stand-in's surface.
+///
+/// Not yet held (issue 30, item 1): the settling passes still work on the user's own
+/// triangles and break the symmetry again (worst paired control 66 % RMS at the vertices, 0.4 %
+/// on MediaPipe as bundled); they are issue 31's to replace.
+#[test]
+fn a_retriangulated_face_is_simulated_on_a_mirror_symmetric_stand_in() {
+    let orig = load("mediapipe_canonical_4loop.obj");
+    let mesh = retriangulated(&orig, 1);
+    assert_ne!(mesh.triangles, orig.triangles);
+    let m = build_face_model(&mesh, &PipelineParams::default(), &Control::new()).unwrap();
+    assert_eq!(m.report.simplify_path, Some(SimplifyPath::Symmetrized));
+    let (shell, which) = shell_asymmetry(&m);
+    let (vertices, landmarks_mm, worst) = asymmetry(&m);
+    eprintln!(
+        "retriangulated MediaPipe: shell {shell:.4} ({which}); after settling, vertices {vertices:.3} ({worst}), landmarks {landmarks_mm:.2} mm"
+    );
+    assert!(shell <= 0.01, "{which}: {shell:.4}");
+    // The bundled face, mirror-meshed, keeps its own triangles.
+    let bundled = build_face_model(&orig, &PipelineParams::default(), &Control::new()).unwrap();
+    assert_eq!(bundled.report.simplify_path, None);
+    let (shell, which) = shell_asymmetry(&bundled);
+    assert!(shell <= 0.01, "bundled {which}: {shell:.4}");
+}
+
+/// A face that is not symmetric in shape keeps its own triangles: the retriangulated face with
+/// one cheek vertex pushed out by 2 % of the eye distance (1.3 mm) is simulated as it is.
+#[test]
+fn an_asymmetric_face_keeps_its_own_triangles() {
+    let mut mesh = retriangulated(&load("mediapipe_canonical_4loop.obj"), 1);
+    let lm_iod = {
+        let loops = face_prep::topology::validate(&mesh.vertices, &mesh.triangles).unwrap();
+        let (_, l) =
+            face_prep::orient::canonical_frame(&mesh.vertices, &mesh.triangles, &loops).unwrap();
+        let c = |lp: &[u32]| face_prep::orient::loop_centroid(&mesh.vertices, lp);
+        c(&l.eye_l).distance(c(&l.eye_r))
+    };
+    // The vertex farthest out along +x (a cheek), pushed out along its own x.
+    let v = (0..mesh.vertices.len())
+        .max_by(|&a, &b| mesh.vertices[a].x.total_cmp(&mesh.vertices[b].x))
+        .unwrap();
+    mesh.vertices[v].z += 0.02 * lm_iod;
+    let prepared = facebem::prepare(&mesh, &PipelineParams::default()).unwrap();
+    assert_eq!(prepared.simplify_path, None);
+    // Simulated on its own (peeled) triangles: every simulated vertex is an input vertex.
+    let copy = prepared.simplified.expect("peeled copy");
+    for (p, &v) in copy.vertices.iter().zip(&copy.original_vertex) {
+        assert_eq!(*p, mesh.vertices[v as usize]);
+    }
+}
+
+/// The ICT narrow face with a third of its edges flipped (13 120 triangles, above the size
+/// threshold) is simplified as a mirrored half of its stand-in, by either copy method, and the
+/// copy is mirror-meshed: every copy vertex has a mirror image among the copy's vertices
+/// (canonical frame, 10⁻⁶ of the eye distance).
+#[test]
+fn a_large_retriangulated_face_is_simplified_from_its_stand_in() {
+    let mesh = retriangulated(&load("ict_narrow_face_4loop.obj"), 1);
+    for (method, path) in [
+        (
+            facebem::copy::CopyMethod::Collapse,
+            SimplifyPath::SymmetrizedMirrored,
+        ),
+        (
+            facebem::copy::CopyMethod::Remesh,
+            SimplifyPath::RemeshedSymmetrized,
+        ),
+    ] {
+        let mut params = PipelineParams::default();
+        params.large_face.method = method;
+        let prepared = facebem::prepare(&mesh, &params).unwrap();
+        assert_eq!(prepared.simplify_path, Some(path));
+        let copy = prepared.simplified.expect("a copy");
+        assert!(copy.triangles.len() <= 1700, "{}", copy.triangles.len());
+        let to_canonical = prepared.rig.canonical_from_input;
+        let c: Vec<DVec3> = copy
+            .vertices
+            .iter()
+            .map(|&p| to_canonical.transform_point3(p))
+            .collect();
+        let size = c.iter().map(|p| p.length()).fold(0.0, f64::max);
+        let worst = c
+            .iter()
+            .map(|p| {
+                let q = DVec3::new(-p.x, p.y, p.z);
+                c.iter()
+                    .map(|r| r.distance(q))
+                    .fold(f64::INFINITY, f64::min)
+            })
+            .fold(0.0, f64::max);
+        assert!(worst <= 1e-6 * size, "{path:?}: {worst:e} of {size}");
+    }
+}
