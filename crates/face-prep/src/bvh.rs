@@ -191,7 +191,7 @@ fn ray_box(origin: DVec3, inv: DVec3, lo: DVec3, hi: DVec3) -> bool {
 }
 
 /// Möller–Trumbore ray/triangle intersection, both faces; returns `t > 0`.
-pub fn ray_triangle(origin: DVec3, dir: DVec3, tri: &[DVec3; 3]) -> Option<f64> {
+pub(crate) fn ray_triangle(origin: DVec3, dir: DVec3, tri: &[DVec3; 3]) -> Option<f64> {
     let e1 = tri[1] - tri[0];
     let e2 = tri[2] - tri[0];
     let p = dir.cross(e2);

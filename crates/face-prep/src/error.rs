@@ -71,7 +71,7 @@ pub fn capped_list<T: fmt::Debug>(items: &[T]) -> String {
 }
 
 /// A file's text shortened for a message (at most 80 characters, quoted).
-pub fn short_text(text: &str) -> String {
+pub(crate) fn short_text(text: &str) -> String {
     const MAX: usize = 80;
     let mut s: String = text.chars().take(MAX).collect();
     if text.chars().nth(MAX).is_some() {
@@ -108,7 +108,7 @@ pub fn sig6(x: f64) -> String {
 }
 
 /// A point to 6 significant digits per coordinate.
-pub fn fmt_p(p: &DVec3) -> String {
+pub(crate) fn fmt_p(p: &DVec3) -> String {
     format!("({}, {}, {})", sig6(p.x), sig6(p.y), sig6(p.z))
 }
 

@@ -1,12 +1,19 @@
 //! The face rig: everything the BEM needs, built from one face mesh.
 
 use crate::bvh::TriangleBvh;
-use crate::controls::muscle_kind::MuscleKind;
-use crate::controls::muscle_model::{AnatomicalParams, MuscleModel};
+use crate::controls::dispatch::{self, control_pattern, place_control};
+use crate::controls::eyelid::lid_back_elements;
+use crate::controls::force_controls;
+use crate::controls::jaw::Jaw;
+use crate::controls::modiolus::{self, ModiolusPin};
+use crate::controls::muscle_kind::{MuscleKind, Side};
+use crate::controls::muscle_model::{AnatomicalParams, MuscleModel, shell_bvh};
 use crate::controls::muscles::{Muscle, place_standard_muscles, skull_elements};
+use crate::controls::rig_parts::RigParts;
+use crate::controls::teeth;
 use crate::error::PrepError;
 use crate::frame::features::FeatureBoxes;
-use crate::frame::orient::{FaceLoops, canonical_frame, loop_centroid};
+use crate::frame::orient::{FaceLoops, canonical_frame, loop_centroid, loop_xy};
 use crate::frame::topology;
 use crate::input::face_mesh::FaceMesh;
 use crate::input::units::{LengthUnit, UnitChoice, Units};
@@ -83,10 +90,10 @@ impl RigParams {
     /// the front to rounding (`--offset 1e-320` made the solve singular; at the lower end the
     /// solve is near-singular and the rig is reported untrustworthy); above it the shell is
     /// thicker than a face's soft tissue.
-    pub const SHELL_FRACTION_RANGE: std::ops::RangeInclusive<f64> = 0.0005..=0.2;
+    pub(crate) const SHELL_FRACTION_RANGE: std::ops::RangeInclusive<f64> = 0.0005..=0.2;
     /// Documented range of [`RigParams::smoothing_iterations`], [`RigParams::repair_rounds`]
     /// and [`RigParams::front_repair_rounds`] (each round costs a pass over the shell).
-    pub const ROUNDS_RANGE: std::ops::RangeInclusive<usize> = 0..=1000;
+    pub(crate) const ROUNDS_RANGE: std::ops::RangeInclusive<usize> = 0..=1000;
 
     /// Checks every numeric field against its documented range; the first field outside is
     /// returned as [`PrepError::InvalidParam`] naming it. [`FaceRig::build`] calls it first.
@@ -312,12 +319,22 @@ impl FaceRig {
                 place_standard_muscles(&self.shell, &self.boxes, &self.skull, spacing)
             }
             MuscleModel::Anatomical => {
-                let lid_back = self.lid_back_elements();
+                let lid_back = lid_back_elements(&self.shell, &self.loops, self.mm_per_unit());
                 self.skull.retain(|e| !lid_back.contains(e));
                 let skull: HashSet<u32> = self.skull.iter().copied().collect();
                 let mut controls: Vec<Muscle> = MuscleKind::ALL
                     .iter()
-                    .map(|&kind| self.place_control(kind, &skull))
+                    .map(|&kind| {
+                        place_control(
+                            &self.shell,
+                            &self.loops,
+                            &self.boxes,
+                            self.mm_per_unit(),
+                            &self.params.anatomical,
+                            kind,
+                            &skull,
+                        )
+                    })
                     .collect();
                 // A force-driven control loads traction-type elements only: the elements of
                 // displacement-driven controls are prescribed in every response.
@@ -443,7 +460,7 @@ impl FaceRig {
     /// frame; see [`crate::controls::muscles::muscle_pattern`]). Empty if the index is out of range.
     pub fn muscle_pattern(&self, muscle_index: usize) -> Vec<(u32, DVec3)> {
         match self.muscles.get(muscle_index) {
-            Some(m) => self.control_pattern(m),
+            Some(m) => control_pattern(self.parts(), m),
             None => Vec::new(),
         }
     }
@@ -457,19 +474,94 @@ impl FaceRig {
 
     /// The outer contour in the front plane (canonical x-y), in loop order.
     pub fn contour_xy(&self) -> Vec<glam::DVec2> {
-        self.loops
-            .face
-            .iter()
-            .map(|&v| self.shell.vertices[v as usize].truncate())
-            .collect()
+        loop_xy(&self.shell.vertices, &self.loops.face)
     }
 
     /// Bounding-volume hierarchy of the shell's elements (for ray casts).
     pub fn shell_bvh(&self) -> TriangleBvh {
-        let tris: Vec<[DVec3; 3]> = (0..self.shell.element_count())
-            .map(|e| self.shell.corners(e))
-            .collect();
-        TriangleBvh::new(&tris)
+        shell_bvh(&self.shell)
+    }
+
+    /// The parts of the rig that the controls' rig-wide functions read.
+    pub(crate) fn parts(&self) -> RigParts<'_> {
+        RigParts {
+            shell: &self.shell,
+            loops: &self.loops,
+            boxes: &self.boxes,
+            muscles: &self.muscles,
+            skull: &self.skull,
+            model: self.params.muscle_model,
+            anatomical: &self.params.anatomical,
+            mm_per_unit: self.mm_per_unit(),
+        }
+    }
+
+    /// The rig's jaw ([`crate::controls::jaw`]): TMJ axis and jaw segment of the rim
+    /// ([`Jaw::of`]).
+    ///
+    /// ```
+    /// use face_prep::{ElementTag, FaceRig, RigParams, load_face};
+    /// let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+    ///     .join("../../assets/mediapipe_canonical_4loop.obj");
+    /// let rig = FaceRig::build(&load_face(&path).unwrap(), &RigParams::default()).unwrap();
+    /// let jaw = rig.jaw();
+    /// assert!(!jaw.elements.is_empty());
+    /// assert!(jaw.elements.iter().all(|&e| rig.shell.tags[e as usize] == ElementTag::Rim));
+    /// // Behind the face, between the eyes and the mouth; the hinge below the joint.
+    /// assert!(jaw.pivot.y < rig.boxes.eye_l.min.y && jaw.pivot.y > rig.boxes.mouth.max.y);
+    /// assert!(jaw.hinge.y < jaw.pivot.y && jaw.hinge.z > jaw.pivot.z);
+    /// ```
+    pub fn jaw(&self) -> Jaw {
+        Jaw::of(&self.shell, &self.loops, &self.boxes, self.mm_per_unit())
+    }
+
+    /// Vertices whose displacement in response `muscle_index` is known exactly rather than
+    /// averaged from their elements, with that displacement at slider = +1 (canonical frame):
+    /// for a jaw mode, every vertex of the jaw segment moves rigidly (so the jaw's part of the
+    /// outer contour moves with the jaw); empty for every other control.
+    pub fn prescribed_vertex_motion(&self, muscle_index: usize) -> Vec<(u32, DVec3)> {
+        dispatch::prescribed_vertex_motion(self.parts(), muscle_index)
+    }
+
+    /// Whether control `k` of [`FaceRig::muscles`] is force-driven (a standard force control in
+    /// the anatomical model; see [`crate::controls::force_controls`]).
+    pub fn is_force_control(&self, k: usize) -> bool {
+        force_controls::is_force_control(self.params.muscle_model, &self.muscles, k)
+    }
+
+    /// Largest displacement on the front surface, in the rig's units, that force-driven control
+    /// `k` reaches at full value (its response is scaled to it); `None` for other controls.
+    pub fn force_target(&self, k: usize) -> Option<f64> {
+        force_controls::force_target(self.parts(), k)
+    }
+
+    /// The front elements (not skull) whose centroid lies within
+    /// [`crate::controls::modiolus::MODIOLUS_RADIUS_MM`] of the modiolus centre on `side`, in
+    /// element order; empty for [`Side::Center`].
+    pub fn modiolus_elements(&self, side: Side) -> Vec<u32> {
+        modiolus::modiolus_elements(
+            &self.shell,
+            &self.boxes,
+            &self.skull,
+            self.mm_per_unit(),
+            side,
+        )
+    }
+
+    /// How control `k` moves the modiolus ([`crate::controls::modiolus`]): for a force-driven
+    /// band muscle of the anatomical model whose insertion lies within
+    /// [`crate::controls::modiolus::MODIOLUS_RADIUS_MM`] of a modiolus centre, the modiolus's
+    /// translation at slider = +1 (its shortening, `max_strain × strength × length`, away from
+    /// the origin along the skin); `None` for every other control.
+    pub fn modiolus_pin(&self, k: usize) -> Option<ModiolusPin> {
+        modiolus::modiolus_pin(self.parts(), k)
+    }
+
+    /// Back elements sliding on the teeth (anatomical model; empty in the thesis model): over
+    /// the dental arch ([`crate::controls::teeth::over_dental_arch`]), neither skull nor an
+    /// element of a displacement-driven control. Sorted.
+    pub fn sliding_elements(&self) -> Vec<u32> {
+        teeth::sliding_elements(self.parts())
     }
 }
 

@@ -107,7 +107,7 @@ fn left_eye(l: &Landmarks) -> DVec2 {
 }
 
 /// Frontalis (face's left): galea aponeurotica → eyebrow skin.
-pub fn frontalis(l: &Landmarks) -> Attachment {
+pub(crate) fn frontalis(l: &Landmarks) -> Attachment {
     let eye = left_eye(l);
     Attachment {
         origin: DVec2::new(eye.x, eye.y + 0.95 * l.iod),
@@ -119,7 +119,7 @@ pub fn frontalis(l: &Landmarks) -> Attachment {
 }
 
 /// Levator labii superioris (face's left): infraorbital margin → upper lip.
-pub fn levator_labii_superioris(l: &Landmarks) -> Attachment {
+pub(crate) fn levator_labii_superioris(l: &Landmarks) -> Attachment {
     let eye = left_eye(l);
     Attachment {
         origin: DVec2::new(eye.x - 0.2 * l.iod, eye.y - 0.3 * l.h),
@@ -138,7 +138,7 @@ pub fn levator_labii_superioris(l: &Landmarks) -> Attachment {
 /// corner) → the modiolus at the mouth corner. Its line rises 47–53° on the bundled faces (the
 /// human smile moves the corner up and out at about 45°, ICT's captured smile at 55°; with the
 /// origin just lateral of the eye corner it rose 59–64°).
-pub fn zygomaticus_major(l: &Landmarks) -> Attachment {
+pub(crate) fn zygomaticus_major(l: &Landmarks) -> Attachment {
     let eye = left_eye(l);
     Attachment {
         origin: DVec2::new(eye.x + l.eye_half_width + 0.25 * l.iod, eye.y - 0.3 * l.h),
@@ -153,7 +153,7 @@ pub fn zygomaticus_major(l: &Landmarks) -> Attachment {
 }
 
 /// Mentalis (face's left): incisive fossa of the mandible → chin skin.
-pub fn mentalis(l: &Landmarks) -> Attachment {
+pub(crate) fn mentalis(l: &Landmarks) -> Attachment {
     Attachment {
         origin: DVec2::new(
             l.mouth.x + 0.2 * l.mouth_half_width,
@@ -170,7 +170,7 @@ pub fn mentalis(l: &Landmarks) -> Attachment {
 }
 
 /// Depressor labii inferioris (face's left): oblique line of the mandible → lower lip.
-pub fn depressor_labii_inferioris(l: &Landmarks) -> Attachment {
+pub(crate) fn depressor_labii_inferioris(l: &Landmarks) -> Attachment {
     Attachment {
         origin: DVec2::new(
             l.mouth.x + 0.9 * l.mouth_half_width,
@@ -190,7 +190,7 @@ pub fn depressor_labii_inferioris(l: &Landmarks) -> Attachment {
 /// the nose at the level of the eyes → skin of the medial half of the eyebrow (pulls the brow
 /// down and toward the midline: AU4). The line of pull runs about 40° below the horizontal, so
 /// the inner brow moves down as much as in.
-pub fn corrugator_supercilii(l: &Landmarks) -> Attachment {
+pub(crate) fn corrugator_supercilii(l: &Landmarks) -> Attachment {
     let eye = left_eye(l);
     Attachment {
         origin: DVec2::new(l.mouth.x + 0.06 * l.iod, eye.y),
@@ -203,7 +203,7 @@ pub fn corrugator_supercilii(l: &Landmarks) -> Attachment {
 
 /// Procerus (unpaired): nasal bone → skin between the eyebrows (pulls it down: AU4 with the
 /// corrugators, the horizontal wrinkle over the nose root).
-pub fn procerus(l: &Landmarks) -> Attachment {
+pub(crate) fn procerus(l: &Landmarks) -> Attachment {
     let eye = left_eye(l);
     Attachment {
         origin: DVec2::new(l.mouth.x, eye.y - 0.25 * l.iod),
@@ -216,7 +216,7 @@ pub fn procerus(l: &Landmarks) -> Attachment {
 
 /// Depressor anguli oris (face's left): oblique line of the mandible, below and lateral of the
 /// mouth corner → modiolus (pulls the corner down and a little out: AU15, the frown).
-pub fn depressor_anguli_oris(l: &Landmarks) -> Attachment {
+pub(crate) fn depressor_anguli_oris(l: &Landmarks) -> Attachment {
     let corner = DVec2::new(l.mouth.x + l.mouth_half_width, l.mouth.y);
     Attachment {
         origin: DVec2::new(corner.x + 0.12 * l.iod, l.mouth.y - 0.55 * l.h),
@@ -229,7 +229,7 @@ pub fn depressor_anguli_oris(l: &Landmarks) -> Attachment {
 
 /// Risorius (face's left): parotid fascia over the masseter, lateral at mouth height →
 /// modiolus (pulls the corner straight out: AU20, the lip stretcher).
-pub fn risorius(l: &Landmarks) -> Attachment {
+pub(crate) fn risorius(l: &Landmarks) -> Attachment {
     let corner = DVec2::new(l.mouth.x + l.mouth_half_width, l.mouth.y);
     Attachment {
         origin: DVec2::new(corner.x + 0.75 * l.iod, l.mouth.y + 0.05 * l.h),
@@ -243,7 +243,7 @@ pub fn risorius(l: &Landmarks) -> Attachment {
 /// Levator labii superioris alaeque nasi (face's left): frontal process of the maxilla beside
 /// the inner eye corner → nasal ala and the upper lip beside the philtrum (AU9, the nose
 /// wrinkler / sneer).
-pub fn levator_labii_superioris_alaeque_nasi(l: &Landmarks) -> Attachment {
+pub(crate) fn levator_labii_superioris_alaeque_nasi(l: &Landmarks) -> Attachment {
     let eye = left_eye(l);
     Attachment {
         origin: DVec2::new(eye.x - l.eye_half_width - 0.02 * l.iod, eye.y - 0.05 * l.h),
@@ -260,7 +260,7 @@ pub fn levator_labii_superioris_alaeque_nasi(l: &Landmarks) -> Attachment {
 /// Zygomaticus minor (face's left): zygomatic bone, medial and below the major's origin →
 /// upper lip, lateral part (AU13 with the levator anguli oris: the cheek puffer / sharp lip
 /// puller; deepens the nasolabial fold).
-pub fn zygomaticus_minor(l: &Landmarks) -> Attachment {
+pub(crate) fn zygomaticus_minor(l: &Landmarks) -> Attachment {
     let eye = left_eye(l);
     Attachment {
         origin: DVec2::new(eye.x + 0.3 * l.eye_half_width, eye.y - 0.3 * l.h),
@@ -273,7 +273,7 @@ pub fn zygomaticus_minor(l: &Landmarks) -> Attachment {
 
 /// Levator anguli oris (face's left): canine fossa of the maxilla, below the infraorbital
 /// foramen → modiolus (lifts the corner straight up: AU13).
-pub fn levator_anguli_oris(l: &Landmarks) -> Attachment {
+pub(crate) fn levator_anguli_oris(l: &Landmarks) -> Attachment {
     let eye = left_eye(l);
     let corner = DVec2::new(l.mouth.x + l.mouth_half_width, l.mouth.y);
     Attachment {
@@ -287,7 +287,7 @@ pub fn levator_anguli_oris(l: &Landmarks) -> Attachment {
 
 /// Buccinator (face's left): pterygomandibular raphe and the alveolar processes at the molars
 /// → modiolus (pulls the corner back and presses the cheek to the teeth: AU14, the dimpler).
-pub fn buccinator(l: &Landmarks) -> Attachment {
+pub(crate) fn buccinator(l: &Landmarks) -> Attachment {
     let corner = DVec2::new(l.mouth.x + l.mouth_half_width, l.mouth.y);
     Attachment {
         origin: DVec2::new(corner.x + 0.45 * l.iod, l.mouth.y - 0.02 * l.h),

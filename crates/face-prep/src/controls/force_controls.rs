@@ -10,7 +10,7 @@
 //! (zero traction) in every other response, so adding one changes no other response.
 //!
 //! A traction has no length unit of its own, so a force-driven response is scaled after the
-//! solve ([`FaceRig::force_target`]): its largest displacement on the front surface is the
+//! solve ([`FaceRig::force_target`](crate::FaceRig::force_target)): its largest displacement on the front surface is the
 //! control's target (the cheek puff: [`CHEEK_PUFF_MM`]).
 //!
 //! ```
@@ -27,29 +27,33 @@
 use crate::controls::anatomy::{Attachment, Landmarks};
 use crate::controls::muscle_kind::{Generator, Lip, attachment};
 use crate::controls::muscle_model::{
-    AnatomicalParams, CONTOUR_TAPER_MM, band_weight, contour_weight, distance_to_loop, place_band,
+    AnatomicalParams, CONTOUR_TAPER_MM, MuscleModel, band_pattern, band_weight, contour_weight,
+    distance_to_loop, place_band,
 };
-use crate::rig::FaceRig;
+use crate::controls::muscles::Muscle;
+use crate::controls::rig_parts::RigParts;
+use crate::frame::features::FeatureBoxes;
+use crate::frame::orient::{FaceLoops, loop_xy};
 use crate::shell::{ElementTag, Shell};
 use glam::{DVec2, DVec3};
 use std::collections::HashSet;
 
 /// Half-width of the orbicularis oris ring, mm from the lip margin (the muscle reaches the
 /// nose base above and the mentolabial sulcus below; Gray's Anatomy, ch. 29).
-pub const SPHINCTER_RING_MM: f64 = 16.0;
+pub(crate) const SPHINCTER_RING_MM: f64 = 16.0;
 
 /// Full contraction of one half of the sphincter moves the face by at most this fraction of
 /// half the mouth width (both halves together narrow the mouth by 21–55 % on the bundled faces:
 /// a pucker).
-pub const SPHINCTER_STRAIN: f64 = 0.45;
+pub(crate) const SPHINCTER_STRAIN: f64 = 0.45;
 
 /// Forward share of the sphincter's pull (the lips protrude as they purse), relative to the
 /// pull toward the mouth's centre.
-pub const SPHINCTER_FORWARD: f64 = 0.6;
+pub(crate) const SPHINCTER_FORWARD: f64 = 0.6;
 
 /// Places a force-driven band: every front and back element (not rim, not skull) whose
 /// centroid lies within the band's whole half-width between origin and insertion.
-pub fn place_force_band(
+pub(crate) fn place_force_band(
     shell: &Shell,
     skull: &HashSet<u32>,
     att: &Attachment,
@@ -67,7 +71,7 @@ pub fn place_force_band(
 /// [`SPHINCTER_RING_MM`] of the mouth loop (`mouth`, canonical x-y) in the front plane, above
 /// (`Lip::Upper`) or below the mouth's centre line `centre_y`, each chain ordered by its angle
 /// around the mouth.
-pub fn place_sphincter(
+pub(crate) fn place_sphincter(
     shell: &Shell,
     skull: &HashSet<u32>,
     mouth: &[DVec2],
@@ -117,7 +121,7 @@ pub const CHEEK_PUFF_MM: f64 = 8.0;
 
 /// Places the cheek puff: the back (deep-layer) elements, not skull, inside either cheek's
 /// ellipse in the front plane ([`cheek_weight`] > 0).
-pub fn place_cheek_puff(shell: &Shell, skull: &HashSet<u32>, l: &Landmarks) -> Vec<u32> {
+pub(crate) fn place_cheek_puff(shell: &Shell, skull: &HashSet<u32>, l: &Landmarks) -> Vec<u32> {
     (0..shell.element_count())
         .filter(|&e| shell.tags[e] == ElementTag::Back && !skull.contains(&(e as u32)))
         .filter(|&e| cheek_weight(shell.centroid(e).truncate(), l) > 0.0)
@@ -162,122 +166,126 @@ pub fn cheek_weight(p: DVec2, l: &Landmarks) -> f64 {
     band_weight(r, 1.0)
 }
 
-impl FaceRig {
-    /// Whether control `k` of [`FaceRig::muscles`] is force-driven (a standard force control in
-    /// the anatomical model; see the module docs).
-    pub fn is_force_control(&self, k: usize) -> bool {
-        self.params.muscle_model == crate::controls::muscle_model::MuscleModel::Anatomical
-            && self
-                .muscles
-                .get(k)
-                .and_then(|m| m.kind)
-                .is_some_and(|kind| kind.is_force())
-    }
+/// Whether control `k` of `muscles` is force-driven (a standard force control in the
+/// anatomical model; see the module docs).
+pub(crate) fn is_force_control(model: MuscleModel, muscles: &[Muscle], k: usize) -> bool {
+    model == MuscleModel::Anatomical
+        && muscles
+            .get(k)
+            .and_then(|m| m.kind)
+            .is_some_and(|kind| kind.is_force())
+}
 
-    /// Largest displacement on the front surface, in the rig's units, that force-driven control
-    /// `k` reaches at full value (its response is scaled to it); `None` for other controls.
-    pub fn force_target(&self, k: usize) -> Option<f64> {
-        if !self.is_force_control(k) {
-            return None;
+/// Largest displacement on the front surface, in the rig's units, that force-driven control
+/// `k` reaches at full value (its response is scaled to it); `None` for other controls.
+pub(crate) fn force_target(rig: RigParts<'_>, k: usize) -> Option<f64> {
+    if !is_force_control(rig.model, rig.muscles, k) {
+        return None;
+    }
+    let kind = rig.muscles[k].kind?;
+    let strength = rig.anatomical.strength;
+    match kind.generator() {
+        Generator::Force(_) => {
+            let att = attachment(kind, rig.boxes)?;
+            Some(att.max_strain * strength * att.origin.distance(att.insertion))
         }
-        let kind = self.muscles[k].kind?;
-        let strength = self.params.anatomical.strength;
-        match kind.generator() {
-            Generator::Force(_) => {
-                let att = attachment(kind, &self.boxes)?;
-                Some(att.max_strain * strength * att.origin.distance(att.insertion))
-            }
-            Generator::Sphincter(_) => {
-                Some(SPHINCTER_STRAIN * strength * 0.5 * self.boxes.mouth.width())
-            }
-            Generator::Pressure => Some(CHEEK_PUFF_MM * strength / self.mm_per_unit()),
-            Generator::Band(_) | Generator::Jaw(_) | Generator::Lid(_) => None,
+        Generator::Sphincter(_) => {
+            Some(SPHINCTER_STRAIN * strength * 0.5 * rig.boxes.mouth.width())
         }
+        Generator::Pressure => Some(CHEEK_PUFF_MM * strength / rig.mm_per_unit),
+        Generator::Band(_) | Generator::Jaw(_) | Generator::Lid(_) => None,
     }
+}
 
-    /// Traction pattern of a force-driven band at slider = +1: the shape of a displacement-
-    /// driven band's pattern ([`crate::controls::muscle_model::anatomical_pattern`]: away from the origin,
-    /// growing with the arc length from it, falling off across the band), weighted once more
-    /// by the position along the muscle (0 at the origin, 1 at the insertion), so the pull
-    /// concentrates where the muscle inserts into the skin. Arbitrary magnitude.
-    pub(crate) fn force_band_traction(
-        &self,
-        muscle: &crate::controls::muscles::Muscle,
-    ) -> Vec<(u32, DVec3)> {
-        let pattern = self.band_pattern(muscle);
-        let Some(att) = muscle.kind.and_then(|k| attachment(k, &self.boxes)) else {
-            return pattern;
-        };
-        let axis = att.insertion - att.origin;
-        let len2 = axis.length_squared();
-        pattern
-            .into_iter()
-            .map(|(e, t)| {
-                let c = self.shell.centroid(e as usize).truncate();
-                let along = if len2 > 0.0 {
-                    ((c - att.origin).dot(axis) / len2).max(0.0)
-                } else {
-                    1.0
-                };
-                (e, t * along)
-            })
-            .collect()
-    }
+/// Traction pattern of a force-driven band at slider = +1: the shape of a displacement-
+/// driven band's pattern ([`crate::controls::muscle_model::anatomical_pattern`]: away from the origin,
+/// growing with the arc length from it, falling off across the band), weighted once more
+/// by the position along the muscle (0 at the origin, 1 at the insertion), so the pull
+/// concentrates where the muscle inserts into the skin. Arbitrary magnitude.
+pub(crate) fn force_band_traction(
+    shell: &Shell,
+    loops: &FaceLoops,
+    boxes: &FeatureBoxes,
+    mm_per_unit: f64,
+    params: &AnatomicalParams,
+    muscle: &Muscle,
+) -> Vec<(u32, DVec3)> {
+    let pattern = band_pattern(shell, loops, boxes, mm_per_unit, params, muscle);
+    let Some(att) = muscle.kind.and_then(|k| attachment(k, boxes)) else {
+        return pattern;
+    };
+    let axis = att.insertion - att.origin;
+    let len2 = axis.length_squared();
+    pattern
+        .into_iter()
+        .map(|(e, t)| {
+            let c = shell.centroid(e as usize).truncate();
+            let along = if len2 > 0.0 {
+                ((c - att.origin).dot(axis) / len2).max(0.0)
+            } else {
+                1.0
+            };
+            (e, t * along)
+        })
+        .collect()
+}
 
-    /// Traction pattern of the cheek puff at slider = +1 (suction: along the deep layer's
-    /// outward normal, into the mouth; −1, the puff, pushes the cheeks out), weighted by
-    /// [`cheek_weight`]. Arbitrary magnitude: the response is scaled to
-    /// [`FaceRig::force_target`].
-    pub(crate) fn cheek_puff_traction(
-        &self,
-        muscle: &crate::controls::muscles::Muscle,
-    ) -> Vec<(u32, DVec3)> {
-        let l = Landmarks::of(&self.boxes);
-        muscle
-            .elements()
-            .map(|e| {
-                let [a, b, c] = self.shell.corners(e as usize);
-                let outward = (b - a).cross(c - a).normalize_or_zero();
-                let w = cheek_weight(self.shell.centroid(e as usize).truncate(), &l);
-                (e, outward * w)
-            })
-            .collect()
-    }
+/// Traction pattern of the cheek puff at slider = +1 (suction: along the deep layer's
+/// outward normal, into the mouth; −1, the puff, pushes the cheeks out), weighted by
+/// [`cheek_weight`]. Arbitrary magnitude: the response is scaled to
+/// [`FaceRig::force_target`](crate::FaceRig::force_target).
+pub(crate) fn cheek_puff_traction(
+    shell: &Shell,
+    boxes: &FeatureBoxes,
+    muscle: &Muscle,
+) -> Vec<(u32, DVec3)> {
+    let l = Landmarks::of(boxes);
+    muscle
+        .elements()
+        .map(|e| {
+            let [a, b, c] = shell.corners(e as usize);
+            let outward = (b - a).cross(c - a).normalize_or_zero();
+            let w = cheek_weight(shell.centroid(e as usize).truncate(), &l);
+            (e, outward * w)
+        })
+        .collect()
+}
 
-    /// The mouth loop in the front plane (canonical x-y), in loop order.
-    pub fn mouth_xy(&self) -> Vec<DVec2> {
-        self.loops
-            .mouth
-            .iter()
-            .map(|&v| self.shell.vertices[v as usize].truncate())
-            .collect()
-    }
+/// The mouth loop of a rig (its `shell` and `loops`) in the front plane (canonical x-y), in
+/// loop order.
+pub(crate) fn mouth_xy(shell: &Shell, loops: &FaceLoops) -> Vec<DVec2> {
+    loop_xy(&shell.vertices, &loops.mouth)
+}
 
-    /// Traction pattern of the sphincter half `muscle` at slider = +1 (away from the mouth's
-    /// centre and backward; −1, the contraction, pulls toward the centre and forward), falling
-    /// off from the lip margin across the ring and faded in from the outer contour. Arbitrary
-    /// magnitude: the response is scaled to [`FaceRig::force_target`].
-    pub(crate) fn sphincter_traction(
-        &self,
-        muscle: &crate::controls::muscles::Muscle,
-    ) -> Vec<(u32, DVec3)> {
-        let mpu = self.mm_per_unit();
-        let mouth = self.mouth_xy();
-        let centre = self.boxes.mouth.center();
-        let contour = self.contour_xy();
-        let ring = SPHINCTER_RING_MM / mpu;
-        muscle
-            .elements()
-            .map(|e| {
-                let c = self.shell.centroid(e as usize).truncate();
-                let outward = (c - centre).normalize_or_zero();
-                let w = band_weight(distance_to_loop(c, &mouth), ring)
-                    * contour_weight(distance_to_loop(c, &contour), CONTOUR_TAPER_MM / mpu);
-                let t = DVec3::new(outward.x, outward.y, -SPHINCTER_FORWARD);
-                (e, t * w)
-            })
-            .collect()
-    }
+/// Traction pattern of the sphincter half `muscle` at slider = +1 (away from the mouth's
+/// centre and backward; −1, the contraction, pulls toward the centre and forward), falling
+/// off from the lip margin across the ring and faded in from the outer contour. Arbitrary
+/// magnitude: the response is scaled to [`FaceRig::force_target`](crate::FaceRig::force_target).
+pub(crate) fn sphincter_traction(
+    shell: &Shell,
+    loops: &FaceLoops,
+    boxes: &FeatureBoxes,
+    mm_per_unit: f64,
+    muscle: &Muscle,
+) -> Vec<(u32, DVec3)> {
+    let mouth = mouth_xy(shell, loops);
+    let centre = boxes.mouth.center();
+    let contour = loop_xy(&shell.vertices, &loops.face);
+    let ring = SPHINCTER_RING_MM / mm_per_unit;
+    muscle
+        .elements()
+        .map(|e| {
+            let c = shell.centroid(e as usize).truncate();
+            let outward = (c - centre).normalize_or_zero();
+            let w = band_weight(distance_to_loop(c, &mouth), ring)
+                * contour_weight(
+                    distance_to_loop(c, &contour),
+                    CONTOUR_TAPER_MM / mm_per_unit,
+                );
+            let t = DVec3::new(outward.x, outward.y, -SPHINCTER_FORWARD);
+            (e, t * w)
+        })
+        .collect()
 }
 
 /// Scales a response to a force-driven control so that its largest front-surface displacement

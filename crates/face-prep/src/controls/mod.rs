@@ -9,9 +9,11 @@
 //!   format ([`muscle_file`]).
 //! - `dispatch`: the two places a control's generator is dispatched on (its elements, its
 //!   pattern).
+//! - `rig_parts`: the parts of a rig the rig-wide functions read (the rig itself is built
+//!   from this stage, which does not name it).
 
 pub mod anatomy;
-mod dispatch;
+pub(crate) mod dispatch;
 pub mod eyelid;
 pub mod force_controls;
 pub mod ids;
@@ -21,4 +23,5 @@ pub mod muscle_file;
 pub mod muscle_kind;
 pub mod muscle_model;
 pub mod muscles;
+pub(crate) mod rig_parts;
 pub mod teeth;

@@ -5,12 +5,13 @@
 //! both lips go with it.
 //!
 //! In the anatomical model a force-driven band muscle whose insertion lies in the modiolus
-//! ([`FaceRig::modiolus_pin`]) moves it rigidly: in that muscle's response the front elements
-//! within [`MODIOLUS_RADIUS_MM`] of the mouth corner ([`FaceRig::modiolus_elements`]) translate
-//! together by the muscle's shortening, `max_strain × length`, toward its origin (along the
-//! skin, [`SKIN_STEP_MM`]); everything else follows through the elastic solve. The elements stay traction-type in the shared system
-//! (free in every other response); the pin is added per response by superposing unit-traction
-//! responses of the modiolus elements (facebem's solve).
+//! ([`FaceRig::modiolus_pin`](crate::FaceRig::modiolus_pin)) moves it rigidly: in that
+//! muscle's response the front elements within [`MODIOLUS_RADIUS_MM`] of the mouth corner
+//! ([`FaceRig::modiolus_elements`](crate::FaceRig::modiolus_elements)) translate together by
+//! the muscle's shortening, `max_strain × length`, toward its origin (along the skin,
+//! [`SKIN_STEP_MM`]); everything else follows through the elastic solve. The elements stay
+//! traction-type in the shared system (free in every other response); the pin is added per
+//! response by superposing unit-traction responses of the modiolus elements (facebem's solve).
 //!
 //! Why: as a plain traction the pull's largest motion sat at the commissure, where the lips'
 //! knife edges meet like a crack tip, and depended on the few elements there. The corner moved
@@ -33,11 +34,13 @@
 use glam::{DVec2, DVec3};
 
 use crate::controls::anatomy::Landmarks;
+use crate::controls::force_controls::is_force_control;
 use crate::controls::muscle_kind::{Generator, Side, attachment};
 use crate::controls::muscle_model::MuscleModel;
+use crate::controls::rig_parts::RigParts;
+use crate::frame::features::FeatureBoxes;
 use crate::frame::topology::triangle_area;
-use crate::rig::FaceRig;
-use crate::shell::ElementTag;
+use crate::shell::{ElementTag, Shell};
 
 /// Radius of the modiolus, mm, around the mouth corner: it spans about 10–12 mm of skin
 /// lateral of the commissure (Gray's Anatomy, ch. 29). Elements whose centroid lies within it
@@ -69,94 +72,98 @@ pub struct ModiolusPin {
     pub displacement: DVec3,
 }
 
-impl FaceRig {
-    /// Centre of the modiolus on `side` (the mouth box's corner at the mouth's centre height,
-    /// canonical x-y); `None` for [`Side::Center`].
-    pub fn modiolus_centre(&self, side: Side) -> Option<DVec2> {
-        let l = Landmarks::of(&self.boxes);
-        let x = match side {
-            Side::Left => l.mouth.x + l.mouth_half_width,
-            Side::Right => l.mouth.x - l.mouth_half_width,
-            Side::Center => return None,
-        };
-        Some(DVec2::new(x, l.mouth.y))
-    }
+/// Centre of the modiolus on `side` (the mouth box's corner at the mouth's centre height,
+/// canonical x-y); `None` for [`Side::Center`].
+pub(crate) fn modiolus_centre(boxes: &FeatureBoxes, side: Side) -> Option<DVec2> {
+    let l = Landmarks::of(boxes);
+    let x = match side {
+        Side::Left => l.mouth.x + l.mouth_half_width,
+        Side::Right => l.mouth.x - l.mouth_half_width,
+        Side::Center => return None,
+    };
+    Some(DVec2::new(x, l.mouth.y))
+}
 
-    /// The front elements (not skull) whose centroid lies within [`MODIOLUS_RADIUS_MM`] of the
-    /// modiolus centre on `side`, in element order; empty for [`Side::Center`].
-    pub fn modiolus_elements(&self, side: Side) -> Vec<u32> {
-        let Some(centre) = self.modiolus_centre(side) else {
-            return Vec::new();
-        };
-        let radius = MODIOLUS_RADIUS_MM / self.mm_per_unit();
-        (0..self.shell.element_count())
-            .filter(|&e| self.shell.tags[e] == ElementTag::Front)
-            .filter(|&e| self.skull.binary_search(&(e as u32)).is_err())
-            .filter(|&e| self.shell.centroid(e).truncate().distance(centre) < radius)
-            .map(|e| e as u32)
-            .collect()
-    }
+/// The front elements of `shell` (not in `skull`, which is sorted) whose centroid lies within
+/// [`MODIOLUS_RADIUS_MM`] of the modiolus centre on `side`, in element order; empty for
+/// [`Side::Center`].
+pub(crate) fn modiolus_elements(
+    shell: &Shell,
+    boxes: &FeatureBoxes,
+    skull: &[u32],
+    mm_per_unit: f64,
+    side: Side,
+) -> Vec<u32> {
+    let Some(centre) = modiolus_centre(boxes, side) else {
+        return Vec::new();
+    };
+    let radius = MODIOLUS_RADIUS_MM / mm_per_unit;
+    (0..shell.element_count())
+        .filter(|&e| shell.tags[e] == ElementTag::Front)
+        .filter(|&e| skull.binary_search(&(e as u32)).is_err())
+        .filter(|&e| shell.centroid(e).truncate().distance(centre) < radius)
+        .map(|e| e as u32)
+        .collect()
+}
 
-    /// How control `k` moves the modiolus: for a force-driven band muscle of the anatomical
-    /// model whose insertion lies within [`MODIOLUS_RADIUS_MM`] of a modiolus centre, the
-    /// modiolus's translation at slider = +1 (its shortening, `max_strain × strength × length`,
-    /// away from the origin along the skin); `None` for every other control.
-    pub fn modiolus_pin(&self, k: usize) -> Option<ModiolusPin> {
-        if self.params.muscle_model != MuscleModel::Anatomical || !self.is_force_control(k) {
-            return None;
-        }
-        let kind = self.muscles.get(k)?.kind?;
-        if !matches!(kind.generator(), Generator::Force(_)) {
-            return None;
-        }
-        let att = attachment(kind, &self.boxes)?;
-        let mpu = self.mm_per_unit();
-        let side = [Side::Left, Side::Right].into_iter().find(|&s| {
-            self.modiolus_centre(s)
-                .is_some_and(|c| c.distance(att.insertion) * mpu < MODIOLUS_RADIUS_MM)
-        })?;
-        let elements = self.modiolus_elements(side);
-        // Along the skin: the muscle's direction in the front plane, with the depth the
-        // surface drops over its first SKIN_STEP_MM toward the origin.
-        let pull = att.origin - att.insertion;
-        let step = pull.normalize_or_zero() * (SKIN_STEP_MM / mpu);
-        let depth = match (
-            self.front_depth(att.insertion + step),
-            self.front_depth(att.insertion),
-        ) {
-            (Some(there), Some(here)) => there - here,
-            _ => 0.0,
-        };
-        let along_skin = step.extend(depth).normalize_or_zero();
-        let shortening = att.max_strain * self.params.anatomical.strength * pull.length();
-        if elements.is_empty() || along_skin == DVec3::ZERO || shortening <= 0.0 {
-            return None;
-        }
-        Some(ModiolusPin {
-            side,
-            displacement: -along_skin * shortening,
-        })
+/// How control `k` moves the modiolus: for a force-driven band muscle of the anatomical
+/// model whose insertion lies within [`MODIOLUS_RADIUS_MM`] of a modiolus centre, the
+/// modiolus's translation at slider = +1 (its shortening, `max_strain × strength × length`,
+/// away from the origin along the skin); `None` for every other control.
+pub(crate) fn modiolus_pin(rig: RigParts<'_>, k: usize) -> Option<ModiolusPin> {
+    if rig.model != MuscleModel::Anatomical || !is_force_control(rig.model, rig.muscles, k) {
+        return None;
     }
+    let kind = rig.muscles.get(k)?.kind?;
+    if !matches!(kind.generator(), Generator::Force(_)) {
+        return None;
+    }
+    let att = attachment(kind, rig.boxes)?;
+    let mpu = rig.mm_per_unit;
+    let side = [Side::Left, Side::Right].into_iter().find(|&s| {
+        modiolus_centre(rig.boxes, s)
+            .is_some_and(|c| c.distance(att.insertion) * mpu < MODIOLUS_RADIUS_MM)
+    })?;
+    let elements = modiolus_elements(rig.shell, rig.boxes, rig.skull, mpu, side);
+    // Along the skin: the muscle's direction in the front plane, with the depth the
+    // surface drops over its first SKIN_STEP_MM toward the origin.
+    let pull = att.origin - att.insertion;
+    let step = pull.normalize_or_zero() * (SKIN_STEP_MM / mpu);
+    let depth = match (
+        front_depth(rig.shell, mpu, att.insertion + step),
+        front_depth(rig.shell, mpu, att.insertion),
+    ) {
+        (Some(there), Some(here)) => there - here,
+        _ => 0.0,
+    };
+    let along_skin = step.extend(depth).normalize_or_zero();
+    let shortening = att.max_strain * rig.anatomical.strength * pull.length();
+    if elements.is_empty() || along_skin == DVec3::ZERO || shortening <= 0.0 {
+        return None;
+    }
+    Some(ModiolusPin {
+        side,
+        displacement: -along_skin * shortening,
+    })
+}
 
-    /// Mean depth (canonical z) of the front surface around `at` (canonical x-y): the front
-    /// elements' centroid depths weighted by their area and a raised cosine of their distance
-    /// from `at`, 1 there and 0 at [`DEPTH_RADIUS_MM`] (smooth, so how a copy's elements fall
-    /// across the radius hardly matters); `None` where no element is that close.
-    fn front_depth(&self, at: DVec2) -> Option<f64> {
-        let radius = DEPTH_RADIUS_MM / self.mm_per_unit();
-        let (mut z, mut weight) = (0.0, 0.0);
-        for e in 0..self.shell.element_count() {
-            let c = self.shell.centroid(e);
-            let d = c.truncate().distance(at);
-            if self.shell.tags[e] != ElementTag::Front || d >= radius {
-                continue;
-            }
-            let area =
-                triangle_area(self.shell.triangles[e].map(|v| self.shell.vertices[v as usize]));
-            let w = area * (0.5 + 0.5 * (std::f64::consts::PI * d / radius).cos());
-            z += c.z * w;
-            weight += w;
+/// Mean depth (canonical z) of the front surface of `shell` around `at` (canonical x-y): the
+/// front elements' centroid depths weighted by their area and a raised cosine of their
+/// distance from `at`, 1 there and 0 at [`DEPTH_RADIUS_MM`] (smooth, so how a copy's elements
+/// fall across the radius hardly matters); `None` where no element is that close.
+fn front_depth(shell: &Shell, mm_per_unit: f64, at: DVec2) -> Option<f64> {
+    let radius = DEPTH_RADIUS_MM / mm_per_unit;
+    let (mut z, mut weight) = (0.0, 0.0);
+    for e in 0..shell.element_count() {
+        let c = shell.centroid(e);
+        let d = c.truncate().distance(at);
+        if shell.tags[e] != ElementTag::Front || d >= radius {
+            continue;
         }
-        (weight > 0.0).then(|| z / weight)
+        let area = triangle_area(shell.triangles[e].map(|v| shell.vertices[v as usize]));
+        let w = area * (0.5 + 0.5 * (std::f64::consts::PI * d / radius).cos());
+        z += c.z * w;
+        weight += w;
     }
+    (weight > 0.0).then(|| z / weight)
 }

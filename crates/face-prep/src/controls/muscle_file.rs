@@ -45,7 +45,7 @@ use std::io::{Read, Write};
 use std::path::Path;
 
 /// The standard muscle a name denotes (display name or id, case-insensitive).
-pub fn kind_from_name(name: &str) -> Option<MuscleKind> {
+pub(crate) fn kind_from_name(name: &str) -> Option<MuscleKind> {
     let n = name.trim();
     MuscleKind::ALL
         .into_iter()

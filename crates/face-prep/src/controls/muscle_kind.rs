@@ -31,9 +31,9 @@
 //!      about the mouth's centre line.
 //! 2. A control that is not a muscle band (a rigid jaw mode, a lid target, a pressure) adds a
 //!    [`Generator`] variant and handles it in the two dispatch points:
-//!    `FaceRig::place_control` (which elements it prescribes: its chains) and
-//!    `FaceRig::control_pattern` (the per-element displacement at slider = +1), both in
-//!    `crates/face-prep/src/controls.rs`.
+//!    `dispatch::place_control` (which elements it prescribes: its chains) and
+//!    `dispatch::control_pattern` (the per-element displacement at slider = +1), both in
+//!    `crates/face-prep/src/controls/dispatch.rs`.
 //! 3. Presets (root crate `src/presets.rs`) name controls by id, so a new control is 0 in
 //!    every preset until a preset lists it.
 //!

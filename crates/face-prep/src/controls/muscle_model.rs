@@ -32,6 +32,7 @@ use crate::controls::anatomy::Attachment;
 use crate::controls::muscle_kind::attachment;
 use crate::controls::muscles::Muscle;
 use crate::frame::features::FeatureBoxes;
+use crate::frame::orient::{FaceLoops, loop_xy};
 use crate::shell::{ElementTag, Shell};
 use glam::{DVec2, DVec3};
 use serde::{Deserialize, Serialize};
@@ -227,7 +228,7 @@ impl MusclePath {
 }
 
 /// Smoothstep fade-in with the distance from the outer contour: 0 on it, 1 from `taper` on.
-pub fn contour_weight(distance: f64, taper: f64) -> f64 {
+pub(crate) fn contour_weight(distance: f64, taper: f64) -> f64 {
     if taper <= 0.0 {
         return 1.0;
     }
@@ -244,7 +245,7 @@ pub fn distance_to_loop(p: DVec2, polyline: &[DVec2]) -> f64 {
 }
 
 /// Raised-cosine fall-off across a band: 1 on the muscle's line, 0 at `half_width`.
-pub fn band_weight(distance: f64, half_width: f64) -> f64 {
+pub(crate) fn band_weight(distance: f64, half_width: f64) -> f64 {
     if half_width <= 0.0 || distance >= half_width {
         0.0
     } else {
@@ -254,7 +255,7 @@ pub fn band_weight(distance: f64, half_width: f64) -> f64 {
 
 /// The attachment a muscle uses in the anatomical model: from the boxes for a standard muscle,
 /// from its chain's ends otherwise (`None` for a muscle without elements).
-pub fn muscle_attachment(
+pub(crate) fn muscle_attachment(
     shell: &Shell,
     boxes: &FeatureBoxes,
     muscle: &Muscle,
@@ -281,7 +282,7 @@ pub fn muscle_attachment(
 /// Places a standard muscle's band: the front and back elements (not skull) whose centroids
 /// lie, in the front plane, within the core of the band and between origin and insertion,
 /// each chain sorted from the insertion to the origin (the thesis's start → end).
-pub fn place_band(
+pub(crate) fn place_band(
     shell: &Shell,
     skull: &HashSet<u32>,
     att: &Attachment,
@@ -326,7 +327,7 @@ pub fn place_band(
 /// the fade-in from the outer contour `contour` (canonical x-y, [`contour_weight`]).
 /// Front chain entries come first, then back chain entries, as in the thesis model.
 #[allow(clippy::too_many_arguments)]
-pub fn anatomical_pattern(
+pub(crate) fn anatomical_pattern(
     shell: &Shell,
     bvh: &TriangleBvh,
     boxes: &FeatureBoxes,
@@ -361,6 +362,36 @@ pub fn anatomical_pattern(
             (e, -toward_origin * (strain * s * w))
         })
         .collect()
+}
+
+/// [`anatomical_pattern`] of `muscle` on a rig's shell: its band's per-element motion at
+/// slider = +1 (a prescribed band's displacement; a force-driven band's traction shape), with
+/// the shell's BVH ([`shell_bvh`]) and the outer contour of `loops` in the front plane.
+pub(crate) fn band_pattern(
+    shell: &Shell,
+    loops: &FaceLoops,
+    boxes: &FeatureBoxes,
+    mm_per_unit: f64,
+    params: &AnatomicalParams,
+    muscle: &Muscle,
+) -> Vec<(u32, DVec3)> {
+    anatomical_pattern(
+        shell,
+        &shell_bvh(shell),
+        boxes,
+        &loop_xy(&shell.vertices, &loops.face),
+        muscle,
+        mm_per_unit,
+        params,
+    )
+}
+
+/// Bounding-volume hierarchy of the shell's elements (for ray casts).
+pub(crate) fn shell_bvh(shell: &Shell) -> TriangleBvh {
+    let tris: Vec<[DVec3; 3]> = (0..shell.element_count())
+        .map(|e| shell.corners(e))
+        .collect();
+    TriangleBvh::new(&tris)
 }
 
 /// [`Attachment::spread_mm`] as a fraction of the muscle's in-plane length.

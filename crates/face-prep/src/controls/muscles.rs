@@ -84,13 +84,13 @@ pub fn muscle_definer(kind: MuscleKind, b: &FeatureBoxes) -> Option<(DVec2, DVec
 }
 
 /// Whether the muscle has a front chain only (thesis: the frontalis lies on the skull).
-pub fn front_only(kind: MuscleKind) -> bool {
+pub(crate) fn front_only(kind: MuscleKind) -> bool {
     matches!(kind, MuscleKind::FrontalisL | MuscleKind::FrontalisR)
 }
 
 /// Skull (fixed) elements: every rim element plus every back element whose centroid lies in
 /// FBSkull or FBNose in x-y. Sorted.
-pub fn skull_elements(shell: &Shell, boxes: &FeatureBoxes) -> Vec<u32> {
+pub(crate) fn skull_elements(shell: &Shell, boxes: &FeatureBoxes) -> Vec<u32> {
     (0..shell.element_count())
         .filter(|&e| match shell.tags[e] {
             ElementTag::Rim => true,
@@ -110,7 +110,7 @@ pub fn skull_elements(shell: &Shell, boxes: &FeatureBoxes) -> Vec<u32> {
 /// layer of tissue under the definer, even where lips or nostrils fold the surface so that a ray
 /// crosses it several times. Skull elements are skipped; each element is kept at its first
 /// occurrence, so chains are ordered start → end without repeats.
-pub fn project_definer(
+pub(crate) fn project_definer(
     shell: &Shell,
     bvh: &TriangleBvh,
     skull: &HashSet<u32>,
@@ -160,7 +160,7 @@ pub fn project_definer(
 }
 
 /// Places the thesis's ten muscles (in [`MuscleKind::THESIS`] order) from the boxes.
-pub fn place_standard_muscles(
+pub(crate) fn place_standard_muscles(
     shell: &Shell,
     boxes: &FeatureBoxes,
     skull: &[u32],

@@ -26,16 +26,18 @@ use std::collections::HashSet;
 use glam::DVec2;
 
 use crate::controls::anatomy::Landmarks;
+use crate::controls::force_controls::{is_force_control, mouth_xy};
 use crate::controls::muscle_model::MuscleModel;
-use crate::rig::FaceRig;
-use crate::shell::ElementTag;
+use crate::controls::rig_parts::RigParts;
+use crate::frame::features::FeatureBoxes;
+use crate::shell::{ElementTag, Shell};
 
 /// How far the dental arch reaches past each mouth corner, in interocular distances.
 pub const ARCH_BEYOND_CORNER_IOD: f64 = 0.15;
 
 /// The lips' free margin, mm from the mouth loop: the deep layer this close to the opening
 /// curls off the teeth and is not sliding on them.
-pub const LIP_MARGIN_MM: f64 = 4.0;
+pub(crate) const LIP_MARGIN_MM: f64 = 4.0;
 
 /// Half the height of the dental arch region, in eye-to-mouth heights.
 pub const ARCH_HALF_HEIGHT_H: f64 = 0.3;
@@ -69,42 +71,35 @@ pub fn over_dental_arch(p: DVec2, l: &Landmarks) -> bool {
     ((p.x - l.mouth.x) / ax).powi(2) + ((p.y - l.mouth.y) / ay).powi(2) <= 1.0
 }
 
-impl FaceRig {
-    /// Back elements sliding on the teeth (anatomical model; empty in the thesis model): over
-    /// the dental arch ([`over_dental_arch`]), neither skull nor an element of a
-    /// displacement-driven control. Sorted.
-    pub fn sliding_elements(&self) -> Vec<u32> {
-        if self.params.muscle_model != MuscleModel::Anatomical {
-            return Vec::new();
-        }
-        let mut prescribed: HashSet<u32> = self.skull.iter().copied().collect();
-        for (k, m) in self.muscles.iter().enumerate() {
-            if !self.is_force_control(k) {
-                prescribed.extend(m.elements());
-            }
-        }
-        let l = Landmarks::of(&self.boxes);
-        let mouth: Vec<DVec2> = self
-            .loops
-            .mouth
-            .iter()
-            .map(|&v| self.shell.vertices[v as usize].truncate())
-            .collect();
-        let margin = LIP_MARGIN_MM / self.mm_per_unit();
-        (0..self.shell.element_count() as u32)
-            .filter(|&e| self.shell.tags[e as usize] == ElementTag::Back)
-            .filter(|e| !prescribed.contains(e))
-            .filter(|&e| {
-                let c = self.shell.centroid(e as usize).truncate();
-                over_dental_arch(c, &l)
-                    && crate::controls::muscle_model::distance_to_loop(c, &mouth) > margin
-            })
-            .collect()
+/// Back elements sliding on the teeth (anatomical model; empty in the thesis model): over
+/// the dental arch ([`over_dental_arch`]), neither skull nor an element of a
+/// displacement-driven control. Sorted.
+pub(crate) fn sliding_elements(rig: RigParts<'_>) -> Vec<u32> {
+    if rig.model != MuscleModel::Anatomical {
+        return Vec::new();
     }
+    let mut prescribed: HashSet<u32> = rig.skull.iter().copied().collect();
+    for (k, m) in rig.muscles.iter().enumerate() {
+        if !is_force_control(rig.model, rig.muscles, k) {
+            prescribed.extend(m.elements());
+        }
+    }
+    let l = Landmarks::of(rig.boxes);
+    let mouth = mouth_xy(rig.shell, rig.loops);
+    let margin = LIP_MARGIN_MM / rig.mm_per_unit;
+    (0..rig.shell.element_count() as u32)
+        .filter(|&e| rig.shell.tags[e as usize] == ElementTag::Back)
+        .filter(|e| !prescribed.contains(e))
+        .filter(|&e| {
+            let c = rig.shell.centroid(e as usize).truncate();
+            over_dental_arch(c, &l)
+                && crate::controls::muscle_model::distance_to_loop(c, &mouth) > margin
+        })
+        .collect()
+}
 
-    /// Whether sliding element `e` rests on the lower teeth (below the mouth's centre line),
-    /// which move with the jaw.
-    pub fn on_lower_teeth(&self, e: u32) -> bool {
-        self.shell.centroid(e as usize).y < self.boxes.mouth.center().y
-    }
+/// Whether sliding element `e` of `shell` rests on the lower teeth (below the mouth's centre
+/// line, from `boxes`), which move with the jaw.
+pub(crate) fn on_lower_teeth(shell: &Shell, boxes: &FeatureBoxes, e: u32) -> bool {
+    shell.centroid(e as usize).y < boxes.mouth.center().y
 }

@@ -46,19 +46,19 @@ impl Box2 {
         p.x >= self.min.x && p.x <= self.max.x && p.y >= self.min.y && p.y <= self.max.y
     }
     /// c4 = (xmin, ymin).
-    pub fn c4(&self) -> DVec2 {
+    pub(crate) fn c4(&self) -> DVec2 {
         self.min
     }
     /// c5 = (xmax, ymin).
-    pub fn c5(&self) -> DVec2 {
+    pub(crate) fn c5(&self) -> DVec2 {
         DVec2::new(self.max.x, self.min.y)
     }
     /// c6 = (xmin, ymax).
-    pub fn c6(&self) -> DVec2 {
+    pub(crate) fn c6(&self) -> DVec2 {
         DVec2::new(self.min.x, self.max.y)
     }
     /// c7 = (xmax, ymax).
-    pub fn c7(&self) -> DVec2 {
+    pub(crate) fn c7(&self) -> DVec2 {
         self.max
     }
     /// The box moved by `delta`.
@@ -119,7 +119,7 @@ pub struct FeatureBoxes {
 
 impl FeatureBoxes {
     /// Boxes from the four loops of a face whose vertices are in the canonical frame.
-    pub fn from_loops(
+    pub(crate) fn from_loops(
         canonical_vertices: &[DVec3],
         loops: &FaceLoops,
     ) -> Result<FeatureBoxes, PrepError> {

@@ -27,6 +27,13 @@ pub fn loop_perimeter(vertices: &[DVec3], lp: &[u32]) -> f64 {
         .sum()
 }
 
+/// The loop `lp` in the front plane (the x-y of its `vertices`), in loop order.
+pub(crate) fn loop_xy(vertices: &[DVec3], lp: &[u32]) -> Vec<DVec2> {
+    lp.iter()
+        .map(|&v| vertices[v as usize].truncate())
+        .collect()
+}
+
 /// Length-weighted centroid of a closed polyline (insensitive to uneven vertex spacing).
 pub fn loop_centroid(vertices: &[DVec3], lp: &[u32]) -> DVec3 {
     let mut sum = DVec3::ZERO;

@@ -246,7 +246,7 @@ impl FaceMesh {
 
     /// Like [`FaceMesh::from_obj_str`], from a buffered reader (at most
     /// [`InputLimits::max_file_bytes`] bytes are read).
-    pub fn from_obj_reader(reader: &mut impl BufRead) -> Result<FaceMesh, PrepError> {
+    pub(crate) fn from_obj_reader(reader: &mut impl BufRead) -> Result<FaceMesh, PrepError> {
         use std::io::Read;
         let limits = InputLimits::default();
         let mut bytes = Vec::new();

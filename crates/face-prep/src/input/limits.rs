@@ -63,7 +63,7 @@ impl InputLimits {
     }
 
     /// `Err(PrepError::TooLarge)` if a file of `bytes` bytes exceeds [`InputLimits::max_file_bytes`].
-    pub fn check_file_bytes(&self, bytes: u64) -> Result<(), PrepError> {
+    pub(crate) fn check_file_bytes(&self, bytes: u64) -> Result<(), PrepError> {
         if bytes > self.max_file_bytes {
             return Err(PrepError::TooLarge {
                 what: "file bytes",

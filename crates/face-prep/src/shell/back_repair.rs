@@ -14,7 +14,7 @@ use crate::bvh::TriangleBvh;
 /// Element-pair tests [`Shell`]'s last-resort relocation of stuck back vertices may make per
 /// shell element: bounds its time by the shell's size on scrambled input (a `v` line swapped:
 /// elements spanning the whole face), far above what the bundled faces use.
-pub const RELOCATE_TESTS_PER_ELEMENT: usize = 500;
+pub(crate) const RELOCATE_TESTS_PER_ELEMENT: usize = 500;
 
 /// Factor applied per repair round to the offset of back/rim vertices of intersecting elements.
 /// Gentler than halving: with the full offset kept up to the knife-edge taper, halving thinned

@@ -45,7 +45,7 @@ mod model;
 mod offset;
 
 pub use crate::closest_point::closest_point_on_triangle;
-pub use back_repair::{RELOCATE_TESTS_PER_ELEMENT, REPAIR_SHRINK};
+pub use back_repair::REPAIR_SHRINK;
 pub use front_repair::{
     FACING_COSINE, FRONT_CLEARANCE, FRONT_REPAIR_GAP, MAX_MOVE_EDGES, MAX_REPAIRABLE_CROSSINGS,
     repair_front_intersections,

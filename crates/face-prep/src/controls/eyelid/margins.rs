@@ -118,14 +118,14 @@ impl EyeMargins {
     }
 
     /// The same interpolation for a per-vertex field (e.g. displacements) on the lower margin.
-    pub fn lower_field_at(&self, field: &[DVec3], t: f64) -> DVec3 {
+    pub(crate) fn lower_field_at(&self, field: &[DVec3], t: f64) -> DVec3 {
         point_at(field, &self.lower, &self.lower_t, t)
     }
 
     /// The closest point of the lower margin to `q` seen along `view` (a unit vector; the
     /// distance is measured in the plane normal to it; positions `p` in any frame): its
     /// parameter and that distance.
-    pub fn closest_on_lower(&self, p: &[DVec3], q: DVec3, view: DVec3) -> (f64, f64) {
+    pub(crate) fn closest_on_lower(&self, p: &[DVec3], q: DVec3, view: DVec3) -> (f64, f64) {
         let flat = |x: DVec3| x - view * x.dot(view);
         let q = flat(q);
         let mut best = (0.0, f64::INFINITY);
@@ -257,7 +257,7 @@ impl EyeMargins {
     /// the upper margin than to the lower one, and above it) or the lower side, with the
     /// parameter of its closest margin point and its distance from the margin (in the plane).
     /// `None` for a point inside the eye opening (between the margins).
-    pub fn locate(&self, p: &[DVec3], q: DVec2) -> Option<LidPoint> {
+    pub(crate) fn locate(&self, p: &[DVec3], q: DVec2) -> Option<LidPoint> {
         let up: Vec<DVec2> = self
             .upper
             .iter()
@@ -296,7 +296,7 @@ impl EyeMargins {
 /// Which lid a point belongs to.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[non_exhaustive]
-pub enum Lid {
+pub(crate) enum Lid {
     /// The upper lid (above the upper margin).
     Upper,
     /// The lower lid (below the lower margin).
@@ -305,7 +305,7 @@ pub enum Lid {
 
 /// A point located relative to the lid margins ([`EyeMargins::locate`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct LidPoint {
+pub(crate) struct LidPoint {
     /// The lid it lies on.
     pub lid: Lid,
     /// Parameter of its closest point on that lid's margin.

@@ -25,12 +25,13 @@
 pub mod margins;
 pub mod pin;
 
-pub use margins::{EyeMargins, Lid, LidPoint};
+pub use margins::EyeMargins;
+use margins::Lid;
 
 pub use crate::controls::ids::LidAction;
 use crate::controls::ids::Side;
 use crate::controls::muscle_model::{contour_weight, distance_to_loop};
-use crate::rig::FaceRig;
+use crate::frame::orient::FaceLoops;
 use crate::shell::{ElementTag, Shell};
 use glam::{DVec2, DVec3};
 use std::collections::HashSet;
@@ -67,7 +68,7 @@ pub const WIDE_RAISE_FRACTION: f64 = 0.3;
 pub use crate::controls::muscle_model::CONTOUR_TAPER_MM;
 
 /// Raised-cosine fall-off: 1 up to `core`, 0 from `band` on.
-pub fn lid_weight(distance: f64, core: f64, band: f64) -> f64 {
+pub(crate) fn lid_weight(distance: f64, core: f64, band: f64) -> f64 {
     if distance <= core {
         1.0
     } else if distance >= band || band <= core {
@@ -80,7 +81,7 @@ pub fn lid_weight(distance: f64, core: f64, band: f64) -> f64 {
 /// One eye's lid geometry on a rig's shell: the margins of its eye loop, measured on the shell's
 /// (canonical) vertices, and the mm scale.
 #[derive(Clone, Debug, PartialEq)]
-pub struct EyeLids<'a> {
+pub(crate) struct EyeLids<'a> {
     /// Canonical positions the margins index (the shell's vertices: the face's come first).
     pub positions: &'a [DVec3],
     /// The eye loop's margins.
@@ -233,26 +234,34 @@ impl<'a> EyeLids<'a> {
     }
 }
 
-impl FaceRig {
-    /// The lids of the eye on `side`, measured on this rig's shell (canonical frame).
-    pub fn eye_lids(&self, side: Side) -> Option<EyeLids<'_>> {
-        let lp = match side {
-            Side::Left => &self.loops.eye_l,
-            Side::Right => &self.loops.eye_r,
-            Side::Center => return None,
-        };
-        EyeLids::new(&self.shell.vertices, lp, side, self.mm_per_unit())
-    }
+/// The lids of the eye on `side` of a rig (its `shell` and `loops`), measured on the shell's
+/// vertices (canonical frame); `None` for [`Side::Center`].
+pub(crate) fn eye_lids<'a>(
+    shell: &'a Shell,
+    loops: &FaceLoops,
+    side: Side,
+    mm_per_unit: f64,
+) -> Option<EyeLids<'a>> {
+    let lp = match side {
+        Side::Left => &loops.eye_l,
+        Side::Right => &loops.eye_r,
+        Side::Center => return None,
+    };
+    EyeLids::new(&shell.vertices, lp, side, mm_per_unit)
+}
 
-    /// Back elements behind the lids of both eyes that the skull box would hold fixed
-    /// ([`EyeLids::not_skull`]).
-    pub(crate) fn lid_back_elements(&self) -> HashSet<u32> {
-        [Side::Left, Side::Right]
-            .into_iter()
-            .filter_map(|s| self.eye_lids(s))
-            .flat_map(|l| l.not_skull(&self.shell))
-            .collect()
-    }
+/// Back elements behind the lids of both eyes that the skull box would hold fixed
+/// ([`EyeLids::not_skull`]).
+pub(crate) fn lid_back_elements(
+    shell: &Shell,
+    loops: &FaceLoops,
+    mm_per_unit: f64,
+) -> HashSet<u32> {
+    [Side::Left, Side::Right]
+        .into_iter()
+        .filter_map(|s| eye_lids(shell, loops, s, mm_per_unit))
+        .flat_map(|l| l.not_skull(shell))
+        .collect()
 }
 
 #[cfg(test)]
