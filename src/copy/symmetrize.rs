@@ -75,7 +75,8 @@ pub fn mirror_deviation(
             .map(|t| face_prep::closest_point::closest_point_on_triangle(q, &corners[t as usize]))
             .map(|c| c.distance(q))
             .fold(f64::INFINITY, f64::min);
-        if !(d <= tolerance) {
+        // NaN (no triangle within reach gives infinity) counts as too far.
+        if d.is_nan() || d > tolerance {
             return None;
         }
         largest = largest.max(d);
@@ -170,9 +171,9 @@ fn cut_left_half(positions: &[DVec3], triangles: &[[u32; 3]]) -> Option<Cut> {
                 polygon.push(index);
             }
         }
-        match polygon.as_slice() {
-            &[a, b, c] => left.push([a, b, c]),
-            &[a, b, c, d] => {
+        match *polygon.as_slice() {
+            [a, b, c] => left.push([a, b, c]),
+            [a, b, c, d] => {
                 // The shorter diagonal.
                 let p = |v: u32| snapped[v as usize];
                 if p(a).distance(p(c)) <= p(b).distance(p(d)) {
