@@ -39,6 +39,10 @@ pub const SHAPE_TOLERANCE_IOD: f64 = 5e-3;
 /// it before the cut, so that no cut point falls next to a vertex.
 const SNAP_FRACTION: f64 = 0.25;
 
+/// Distance from the midplane, in interocular distances, within which a vertex is on it to
+/// rounding (the canonical frame is computed in f64 from the input's float positions).
+const ON_PLANE_IOD: f64 = 1e-9;
+
 /// Largest distance from a vertex's mirror image (about x = 0) to the surface, over every
 /// vertex, when it is at most `tolerance`; `None` as soon as one vertex is farther.
 ///
@@ -108,16 +112,19 @@ fn cut_left_half(positions: &[DVec3], triangles: &[[u32; 3]]) -> Option<Cut> {
     }
     let mut snapped = positions.to_vec();
     for (p, &s) in snapped.iter_mut().zip(&shortest) {
-        if p.x.abs() < SNAP_FRACTION * s {
+        if p.x.abs() < SNAP_FRACTION * s || p.x.abs() <= ON_PLANE_IOD {
             p.x = 0.0;
         }
     }
     // A triangle whose three corners were all moved onto the plane would lie in it: its
-    // corners stay where they were. Only a triangle that lies in the plane in the input does.
+    // corners stay where they were, unless they were on the plane to rounding already. Only a
+    // triangle that lies in the plane in the input does.
     for t in triangles {
         if t.iter().all(|&v| snapped[v as usize].x == 0.0) {
             for &v in t {
-                snapped[v as usize].x = positions[v as usize].x;
+                if positions[v as usize].x.abs() > ON_PLANE_IOD {
+                    snapped[v as usize].x = positions[v as usize].x;
+                }
             }
         }
     }
@@ -325,8 +332,19 @@ pub(crate) fn mirror_meshed_stand_in(
     if crate::copy::simplify::mirror_map(&canon.positions, &canon.triangles).is_some() {
         return None;
     }
-    let sym = symmetrized(&canon)?;
-    let iod = canon.input_from_grid.transform_vector3(DVec3::X).length();
+    // The stand-in is cut from the unrounded canonical positions: the 2⁻²⁰ grid that makes
+    // the simplifier's input exact would flatten a sliver thinner than it.
+    let grid_from_input = canon.input_from_grid.inverse();
+    let exact = Canonical {
+        positions: canon
+            .input_vertex
+            .iter()
+            .map(|&v| grid_from_input.transform_point3(vertices[v as usize]))
+            .collect(),
+        ..canon
+    };
+    let sym = symmetrized(&exact)?;
+    let iod = exact.input_from_grid.transform_vector3(DVec3::X).length();
     Some((
         sym.to_input(&Simplified::whole(&sym.positions, &sym.triangles)),
         SHAPE_TOLERANCE_IOD * iod,
