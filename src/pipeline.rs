@@ -9,17 +9,85 @@ use face_prep::{FaceMesh, FaceRig};
 use glam::DVec3;
 
 use crate::control::{Control, Stage};
+use crate::copy::simplify::SimplifyPath;
 use crate::frame::InputFrame;
 use crate::model::{
     FaceModel, MuscleBasis, PipelineError, PipelineParams, PrecomputeReport, PreparedRig,
 };
 use crate::solve::Solved;
+use crate::transfer::Transfer;
 
 /// The prep step alone (fast, no BEM): the input's frame, rolled-in parts peeled off,
-/// simplification of a large face, rig, muscle override.
+/// simplification of a large face, rig, muscle override. A face symmetric in shape but not in
+/// its triangles is prepared as its mirror-meshed stand-in ([`crate::copy::symmetrize`]).
 pub fn prepare(mesh: &FaceMesh, params: &PipelineParams) -> Result<PreparedRig, PipelineError> {
     params.validate()?;
     face_prep::check_not_scrambled(&mesh.vertices, &mesh.triangles)?;
+    let Some(stand_in) = crate::copy::symmetrize::stand_in(mesh) else {
+        return prepare_as_written(mesh, params);
+    };
+    let inner = prepare_as_written(&stand_in.mesh, params)?;
+    let transfer = stand_in_transfer(mesh, &stand_in)?;
+    // A vertex of the face is peeled when its closest stand-in point is mostly on peeled
+    // stand-in vertices.
+    let mut peeled = vec![false; stand_in.mesh.vertices.len()];
+    for &v in &inner.peeled_vertices {
+        peeled[v as usize] = true;
+    }
+    let peeled_vertices = (0..mesh.vertices.len() as u32)
+        .filter(|&v| {
+            let (t, w) = transfer.samples[v as usize];
+            let tri = stand_in.surface.triangles[t as usize];
+            (0..3)
+                .filter(|&k| peeled[tri[k] as usize])
+                .map(|k| w[k])
+                .sum::<f64>()
+                > 0.5
+        })
+        .collect();
+    Ok(PreparedRig {
+        simplified: Some(onto_face(inner.simplified.as_ref(), &stand_in)),
+        peeled_vertices,
+        simplify_path: Some(SimplifyPath::of_stand_in(inner.simplify_path)),
+        frame: InputFrame::find(mesh)?,
+        ..inner
+    })
+}
+
+/// The closest-point transfer from a face's stand-in to the face's own vertices.
+fn stand_in_transfer(
+    mesh: &FaceMesh,
+    stand_in: &crate::copy::symmetrize::StandIn,
+) -> Result<Transfer, PipelineError> {
+    crate::copy::symmetrize::transfer_to_face(mesh, stand_in).ok_or(PipelineError::Transfer(
+        crate::transfer::TransferError::EmptyCopy,
+    ))
+}
+
+/// The simulated copy of a stand-in (`copy`, `None` for the whole stand-in) with its vertices
+/// mapped to the face's own.
+fn onto_face(
+    copy: Option<&crate::copy::Simplified>,
+    stand_in: &crate::copy::symmetrize::StandIn,
+) -> crate::copy::Simplified {
+    match copy {
+        Some(c) => crate::copy::Simplified {
+            original_vertex: c
+                .original_vertex
+                .iter()
+                .map(|&v| stand_in.surface.original_vertex[v as usize])
+                .collect(),
+            ..c.clone()
+        },
+        None => stand_in.surface.clone(),
+    }
+}
+
+/// [`prepare`] of the mesh as it is.
+fn prepare_as_written(
+    mesh: &FaceMesh,
+    params: &PipelineParams,
+) -> Result<PreparedRig, PipelineError> {
     let frame = InputFrame::find(mesh)?;
     let reduced =
         crate::copy::reduce::reduce(mesh, &frame, params.peel_rolled_in, &params.large_face)?;
@@ -62,12 +130,63 @@ pub fn prep_rig(mesh: &FaceMesh, params: &PipelineParams) -> Result<FaceRig, Pip
 /// copy are then carried to every vertex.
 /// Progress of every stage goes to `control`; cancelling it stops the work at the next check
 /// (the LU factorisation itself runs to completion once started).
+///
+/// A face that is mirror-symmetric in shape but not in its triangles is built as its
+/// mirror-meshed stand-in ([`crate::copy::symmetrize`]), settled there, and its fields carried
+/// to the face's own vertices (closest point, barycentric), so that left and right agree
+/// whatever the triangulation.
 pub fn build_face_model(
     mesh: &FaceMesh,
     params: &PipelineParams,
     control: &Control,
 ) -> Result<FaceModel, PipelineError> {
     params.validate()?;
+    face_prep::check_not_scrambled(&mesh.vertices, &mesh.triangles)?;
+    let Some(stand_in) = crate::copy::symmetrize::stand_in(mesh) else {
+        return build_as_written(mesh, params, control);
+    };
+    let inner = build_as_written(&stand_in.mesh, params, control)?;
+    let t = Instant::now();
+    let transfer = stand_in_transfer(mesh, &stand_in)?;
+    let displacements = inner
+        .basis
+        .displacements
+        .iter()
+        .map(|field| transfer.apply(&stand_in.surface, field))
+        .collect();
+    let copy = onto_face(inner.simplified.as_ref().map(|s| &s.mesh), &stand_in);
+    let copy_transfer = Transfer::build(&mesh.vertices, &copy).ok_or(PipelineError::Transfer(
+        crate::transfer::TransferError::EmptyCopy,
+    ))?;
+    let report = PrecomputeReport {
+        input_triangles: mesh.triangles.len(),
+        simplify_path: Some(SimplifyPath::of_stand_in(inner.report.simplify_path)),
+        transfer_seconds: inner.report.transfer_seconds + t.elapsed().as_secs_f64(),
+        ..inner.report
+    };
+    Ok(FaceModel {
+        mesh: mesh.clone(),
+        simplified: Some(crate::transfer::SimplifiedFace {
+            mesh: copy,
+            transfer: copy_transfer,
+        }),
+        basis: MuscleBasis {
+            muscle_ids: inner.basis.muscle_ids,
+            neutral: mesh.vertices.clone(),
+            triangles: mesh.triangles.clone(),
+            displacements,
+        },
+        report,
+        ..inner
+    })
+}
+
+/// [`build_face_model`] of the mesh as it is.
+fn build_as_written(
+    mesh: &FaceMesh,
+    params: &PipelineParams,
+    control: &Control,
+) -> Result<FaceModel, PipelineError> {
     let t0 = Instant::now();
     control.report(Stage::Prep, 0, 1);
     let PreparedRig {
@@ -78,7 +197,7 @@ pub fn build_face_model(
         simplify_path,
         copy_fallback,
         frame,
-    } = prepare(mesh, params)?;
+    } = prepare_as_written(mesh, params)?;
     if rig.muscles.is_empty() {
         return Err(PipelineError::NoMuscles);
     }

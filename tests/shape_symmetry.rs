@@ -126,32 +126,53 @@ fn shell_asymmetry(m: &FaceModel) -> (f64, String) {
     (worst, which)
 }
 
+/// The mirror partner of every vertex of a mirror-meshed face (`facebem::copy::simplify::
+/// mirror_map` in the face's canonical frame, interocular units): by the mesh, not by distance
+/// alone (ICT's rolled-in lips cross at the corners, where the nearest vertex to a mirror image
+/// can be on the other lip).
+fn partners(mesh: &face_prep::FaceMesh) -> Vec<usize> {
+    let (v, t) = (&mesh.vertices, &mesh.triangles);
+    let loops = face_prep::topology::validate(v, t).unwrap();
+    let (canonical_from_input, l) = face_prep::orient::canonical_frame(v, t, &loops).unwrap();
+    let c = |lp: &[u32]| face_prep::orient::loop_centroid(v, lp);
+    let iod = c(&l.eye_l).distance(c(&l.eye_r));
+    let p: Vec<DVec3> = v
+        .iter()
+        .map(|&q| canonical_from_input.transform_point3(q) / iod)
+        .collect();
+    facebem::copy::simplify::mirror_map(&p, t)
+        .expect("a mirror-meshed face")
+        .into_iter()
+        .map(|w| w as usize)
+        .collect()
+}
+
 /// Left field against the mirrored right field of every paired control, on a face whose
-/// vertices are mirror-symmetric (`mirror_of`): the largest RMS difference as a fraction of the
+/// vertices are mirror-symmetric (`mirror_of`, from [`partners`] of the face it was made from): the largest RMS difference as a fraction of the
 /// larger field's RMS, and the largest difference at the mouth corners and brows in mm.
-fn asymmetry(m: &FaceModel) -> (f64, f64, String) {
+fn asymmetry(m: &FaceModel, mirror_of: &[usize]) -> (f64, f64, String) {
     let lm = FaceLandmarks::of(m).expect("four loops");
     let c = lm.canonical_points(&m.mesh.vertices);
-    let mirror_of: Vec<usize> = c
-        .iter()
-        .map(|p| {
-            let q = DVec3::new(-p.x, p.y, p.z);
-            (0..c.len())
-                .min_by(|&a, &b| {
-                    c[a].distance_squared(q)
-                        .total_cmp(&c[b].distance_squared(q))
-                })
-                .unwrap()
-        })
-        .collect();
-    let pairs = [
-        (
-            SurfacePoint::vertex(lm.mouth_corner_l),
-            SurfacePoint::vertex(lm.mouth_corner_r),
-        ),
-        (lm.brow_point_l, lm.brow_point_r),
-        (lm.brow_inner_point_l, lm.brow_inner_point_r),
-    ];
+    // The mouth corners, and the brow points' nearest vertices with their mirror partners:
+    // between vertices, a field is interpolated over the user's own triangles, which differ
+    // from side to side (on MediaPipe's coarse brow, by up to 1.6 mm under the corrugator).
+    let nearest = |p: SurfacePoint| {
+        let k = (0..3)
+            .max_by(|&a, &b| p.weights[a].total_cmp(&p.weights[b]))
+            .unwrap();
+        p.corners[k] as usize
+    };
+    let pairs: Vec<(usize, usize)> = [
+        lm.mouth_corner_l as usize,
+        nearest(lm.brow_point_l),
+        nearest(lm.brow_inner_point_l),
+        lm.mouth_corner_r as usize,
+        nearest(lm.brow_point_r),
+        nearest(lm.brow_inner_point_r),
+    ]
+    .into_iter()
+    .map(|v| (v, mirror_of[v]))
+    .collect();
     let mirrored = |d: DVec3| DVec3::new(-d.x, d.y, d.z);
     let (mut worst_rms, mut worst_mm, mut which) = (0.0f64, 0.0f64, String::new());
     for kind in MuscleKind::ALL
@@ -174,37 +195,36 @@ fn asymmetry(m: &FaceModel) -> (f64, f64, String) {
             worst_rms = diff / larger;
             which = kind.id().to_string();
         }
-        for (pl, pr) in pairs {
-            let d = (pl.sample(&l) - mirrored(pr.sample(&r))).length();
-            worst_mm = worst_mm.max(d);
+        for &(vl, vr) in &pairs {
+            worst_mm = worst_mm.max((l[vl] - mirrored(r[vr])).length());
         }
     }
     (worst_rms, worst_mm, which)
 }
 
-/// MediaPipe's face with about a third of its interior edges flipped at random (seed 1; test
-/// face (a) of issue 30 at MediaPipe's size: the same vertices, other diagonals): symmetric
-/// in shape, not in its triangles. It is simulated on a mirror-meshed stand-in (its left half
-/// cut along the midplane and mirrored), so every paired control's shell response mirrors its
-/// partner's within 1 % RMS (on its own triangles the simulated pairs differed by up to 77 %
-/// RMS at the vertices), and the peeled vertices are decided on the stand-in's surface.
-///
-/// Not yet held (issue 30, item 1): the settling passes still work on the user's own
-/// triangles and break the symmetry again (worst paired control 66 % RMS at the vertices, 0.4 %
-/// on MediaPipe as bundled); they are issue 31's to replace.
+/// Test face (a) of issue 30: a bundled face with about a third of its interior edges flipped
+/// at random (seed 1: the same vertices, other diagonals), symmetric in shape, not in its
+/// triangles. It is built as its mirror-meshed stand-in (its left half cut along the midplane
+/// and mirrored), settled there, and carried to its own vertices, so every paired control's
+/// shell response mirrors its partner's within 1 % RMS, and its field at the vertices within
+/// 5 % RMS of the larger field and 1 mm at the mouth corners and brows. On its own triangles
+/// (before) the pairs differed by up to 77 % RMS at the vertices before settling, and 66 %
+/// with the response settled on the stand-in but the settling on its own triangles.
 #[test]
-fn a_retriangulated_face_is_simulated_on_a_mirror_symmetric_stand_in() {
+fn a_retriangulated_face_gets_mirror_symmetric_responses() {
     let orig = load("mediapipe_canonical_4loop.obj");
     let mesh = retriangulated(&orig, 1);
     assert_ne!(mesh.triangles, orig.triangles);
     let m = build_face_model(&mesh, &PipelineParams::default(), &Control::new()).unwrap();
     assert_eq!(m.report.simplify_path, Some(SimplifyPath::Symmetrized));
     let (shell, which) = shell_asymmetry(&m);
-    let (vertices, landmarks_mm, worst) = asymmetry(&m);
+    let (vertices, landmarks_mm, worst) = asymmetry(&m, &partners(&orig));
     eprintln!(
         "retriangulated MediaPipe: shell {shell:.4} ({which}); after settling, vertices {vertices:.3} ({worst}), landmarks {landmarks_mm:.2} mm"
     );
     assert!(shell <= 0.01, "{which}: {shell:.4}");
+    assert!(vertices <= 0.05, "{worst}: {vertices:.4}");
+    assert!(landmarks_mm <= 1.0, "{landmarks_mm:.3} mm");
     // The bundled face, mirror-meshed, keeps its own triangles.
     let bundled = build_face_model(&orig, &PipelineParams::default(), &Control::new()).unwrap();
     assert_eq!(bundled.report.simplify_path, None);
@@ -279,4 +299,30 @@ fn a_large_retriangulated_face_is_simplified_from_its_stand_in() {
             .fold(0.0, f64::max);
         assert!(worst <= 1e-6 * size, "{path:?}: {worst:e} of {size}");
     }
+}
+
+/// Test face (a) of issue 30 as the issue names it: the ICT narrow face (13 120 triangles)
+/// with about a third of its edges flipped, built as its stand-in's mirrored copy, settled on
+/// the stand-in and carried to its own vertices. The mouth corners and brows mirror within
+/// 1 mm (0.2 mm). The fields at the vertices do not yet mirror within the issue's 5 % RMS: the
+/// settling passes, greedy and sequential, decide the two rolled-in mouth corners of the
+/// mirror-meshed stand-in differently (worst pair 12 % RMS, the risorius, 3 mm at the right
+/// corner's rolled-in lip; 3.3 % without the settling passes; ICT as bundled 0.4 %). That is
+/// issue 31's to replace; this test holds what is true today. (Its rig is not trusted yet
+/// either: a near-singular ratio of 53 at the lips of the copy, `docs/journal.md`.)
+#[test]
+fn the_retriangulated_ict_face_gets_mirror_symmetric_responses() {
+    let orig = load("ict_narrow_face_4loop.obj");
+    let mesh = retriangulated(&orig, 1);
+    let m = build_face_model(&mesh, &PipelineParams::default(), &Control::new()).unwrap();
+    assert_eq!(
+        m.report.simplify_path,
+        Some(SimplifyPath::SymmetrizedMirrored)
+    );
+    let (vertices, landmarks_mm, worst) = asymmetry(&m, &partners(&orig));
+    eprintln!(
+        "retriangulated ICT 13k: vertices {vertices:.4} ({worst}), landmarks {landmarks_mm:.3} mm"
+    );
+    assert!(vertices <= 0.15, "{worst}: {vertices:.4}");
+    assert!(landmarks_mm <= 1.0, "{landmarks_mm:.3} mm");
 }

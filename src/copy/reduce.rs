@@ -29,23 +29,13 @@ pub(crate) fn reduce(
     params: &LargeFaceParams,
 ) -> Result<Reduced, SimplifyError> {
     let whole = Simplified::whole(&mesh.vertices, &mesh.triangles);
-    let peel = |face: &Simplified| {
-        if peel_rolled_in {
-            super::rolled_in::peel_rolled_in(face)
-        } else {
-            None
-        }
+    let peeled = if peel_rolled_in {
+        super::rolled_in::peel_rolled_in(&whole)
+    } else {
+        None
     };
-    let peeled = peel(&whole);
-    // A face symmetric in shape but not in its triangles is simulated on a mirror-meshed
-    // stand-in ([`super::symmetrize`]), peeled in turn; the input's own peeled vertices are
-    // still the ones hung from the copy's margins.
-    let stand_in = super::symmetrize::mirror_meshed_stand_in(&mesh.vertices, &mesh.triangles)
-        .map(|(s, tolerance)| (peel(&s).unwrap_or(s), tolerance));
-    let peeled_vertices: Vec<u32> = match (&stand_in, &peeled) {
-        // Decided on the stand-in's surface: the face's own peel follows its triangles.
-        (Some((s, tolerance)), _) => super::symmetrize::vertices_off(&mesh.vertices, s, *tolerance),
-        (None, Some(p)) => {
+    let peeled_vertices: Vec<u32> = match &peeled {
+        Some(p) => {
             let mut kept = vec![false; whole.vertices.len()];
             for &v in &p.original_vertex {
                 kept[v as usize] = true;
@@ -54,10 +44,9 @@ pub(crate) fn reduce(
                 .filter(|&v| !kept[v as usize])
                 .collect()
         }
-        (None, None) => Vec::new(),
+        None => Vec::new(),
     };
-    let stand_in = stand_in.map(|(s, _)| s);
-    let base = stand_in.as_ref().or(peeled.as_ref()).unwrap_or(&whole);
+    let base = peeled.as_ref().unwrap_or(&whole);
     let mut simplify_path = None;
     let mut copy_fallback = None;
     // A target at or above the face's own size leaves it whole, whatever the method: a remesh
@@ -67,11 +56,7 @@ pub(crate) fn reduce(
     let simplified = if large && params.target_triangles < base.triangles.len() {
         let keep = kept_mouth_corners(mesh, frame, base);
         let (s, path, fallback) = copy_large_face(base, params, &keep)?;
-        simplify_path = Some(match (&stand_in, path) {
-            (Some(_), SimplifyPath::Mirrored) => SimplifyPath::SymmetrizedMirrored,
-            (Some(_), SimplifyPath::RemeshedMirrored) => SimplifyPath::RemeshedSymmetrized,
-            _ => path,
-        });
+        simplify_path = Some(path);
         copy_fallback = fallback;
         Some(Simplified {
             original_vertex: s
@@ -81,9 +66,6 @@ pub(crate) fn reduce(
                 .collect(),
             ..s
         })
-    } else if stand_in.is_some() {
-        simplify_path = Some(SimplifyPath::Symmetrized);
-        stand_in
     } else {
         peeled
     };

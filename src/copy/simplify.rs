@@ -55,6 +55,26 @@ pub enum SimplifyPath {
 }
 
 impl SimplifyPath {
+    /// The path of a face simulated as its mirror-meshed stand-in, from the stand-in's own
+    /// (`None` when the stand-in was not reduced).
+    ///
+    /// ```
+    /// use facebem::copy::simplify::SimplifyPath;
+    /// assert_eq!(SimplifyPath::of_stand_in(None), SimplifyPath::Symmetrized);
+    /// assert_eq!(
+    ///     SimplifyPath::of_stand_in(Some(SimplifyPath::Mirrored)),
+    ///     SimplifyPath::SymmetrizedMirrored
+    /// );
+    /// ```
+    pub fn of_stand_in(inner: Option<SimplifyPath>) -> SimplifyPath {
+        match inner {
+            None => SimplifyPath::Symmetrized,
+            Some(SimplifyPath::Mirrored) => SimplifyPath::SymmetrizedMirrored,
+            Some(SimplifyPath::RemeshedMirrored) => SimplifyPath::RemeshedSymmetrized,
+            Some(other) => other,
+        }
+    }
+
     /// A few words for reports, to follow "simplified".
     ///
     /// ```
