@@ -181,8 +181,50 @@ pub fn build_face_model(
     })
 }
 
-/// [`build_face_model`] of the mesh as it is.
+/// [`build_face_model`] of the mesh as it is. A large face whose edge-collapse copy gives a
+/// rig that is not trustworthy ([`crate::model::distrust`]) is built again on its remeshed
+/// copy ([`crate::copy::CopyMethod::Remesh`]), and that rig is kept when it is trustworthy,
+/// with the reason in [`PrecomputeReport::copy_fallback`] (a warning; [`FaceModel::params`]
+/// stay the ones asked for, so the cache finds the model again): the two copies are two
+/// discretisations of the same surface, and where the simplifier leaves a long triangle under
+/// a thin shelf of tissue (the flipped ICT face's lower lids, `docs/journal.md`) the remesher's
+/// near-equilateral triangles do not.
 fn build_as_written(
+    mesh: &FaceMesh,
+    params: &PipelineParams,
+    control: &Control,
+) -> Result<FaceModel, PipelineError> {
+    let model = build_one_copy(mesh, params, control)?;
+    let copied = model.report.simplify_path.is_some_and(|p| p.is_collapse());
+    if !copied || params.large_face.method != crate::copy::CopyMethod::Collapse {
+        return Ok(model);
+    }
+    let causes = crate::model::distrust(&model);
+    if causes.is_empty() {
+        return Ok(model);
+    }
+    let mut remesh = params.clone();
+    remesh.large_face.method = crate::copy::CopyMethod::Remesh;
+    let other = build_one_copy(mesh, &remesh, control)?;
+    if !crate::model::distrust(&other).is_empty() {
+        return Ok(model);
+    }
+    let reason = format!(
+        "the rig on the edge-collapse copy was not trustworthy ({})",
+        causes.join("; ")
+    );
+    Ok(FaceModel {
+        params: params.clone(),
+        report: PrecomputeReport {
+            copy_fallback: Some(reason),
+            ..other.report
+        },
+        ..other
+    })
+}
+
+/// One build of the mesh as it is, on the copy `params` ask for.
+fn build_one_copy(
     mesh: &FaceMesh,
     params: &PipelineParams,
     control: &Control,

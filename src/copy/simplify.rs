@@ -55,6 +55,24 @@ pub enum SimplifyPath {
 }
 
 impl SimplifyPath {
+    /// Whether the copy was made by edge collapses (rather than remeshed, or not reduced).
+    ///
+    /// ```
+    /// use facebem::copy::simplify::SimplifyPath;
+    /// assert!(SimplifyPath::SymmetrizedMirrored.is_collapse());
+    /// assert!(!SimplifyPath::Remeshed.is_collapse());
+    /// assert!(!SimplifyPath::Symmetrized.is_collapse());
+    /// ```
+    pub fn is_collapse(self) -> bool {
+        matches!(
+            self,
+            SimplifyPath::Mirrored
+                | SimplifyPath::Canonical
+                | SimplifyPath::AsWritten
+                | SimplifyPath::SymmetrizedMirrored
+        )
+    }
+
     /// The path of a face simulated as its mirror-meshed stand-in, from the stand-in's own
     /// (`None` when the stand-in was not reduced).
     ///

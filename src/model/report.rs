@@ -12,8 +12,9 @@ pub struct PrecomputeReport {
     pub simulated_triangles: usize,
     /// How a large face was simplified ([`crate::copy::simplify`](mod@crate::copy::simplify)); `None` when it was not.
     pub simplify_path: Option<crate::copy::simplify::SimplifyPath>,
-    /// Why the edge-collapse copy of a large face was replaced by a remeshed one (e.g. it had
-    /// zero-area triangles); `None` when it was not. A warning.
+    /// Why the edge-collapse copy of a large face was replaced by a remeshed one (it was not a
+    /// valid surface, or the rig on it was not trustworthy while the remeshed copy's is);
+    /// `None` when it was not. A warning.
     pub copy_fallback: Option<String>,
     /// Boundary elements of the closed shell.
     pub shell_elements: usize,
