@@ -23,13 +23,8 @@ use glam::DVec3;
 
 /// Displacement field of a preset.
 fn preset_field(m: &FaceModel, name: &str) -> Vec<DVec3> {
-    let sliders = presets::find(name).unwrap().sliders_for(m.muscle_ids());
-    let posed = m.pose(&sliders).unwrap();
-    posed
-        .iter()
-        .zip(&m.mesh.vertices)
-        .map(|(p, v)| *p - *v)
-        .collect()
+    assert!(presets::find(name).is_some(), "{name} is a preset");
+    support::named_field(m, name)
 }
 
 /// Zygomaticus major at full contraction, the corner on its own side: 7–15 mm, 25°–70° above

@@ -72,6 +72,7 @@ pub fn retriangulated(mesh: &face_prep::FaceMesh, seed: u64) -> face_prep::FaceM
         vertices: mesh.vertices.clone(),
         triangles,
         input_to_vertex: mesh.input_to_vertex.clone(),
+        lip_line: None,
     }
 }
 
@@ -355,15 +356,7 @@ fn a_retriangulated_face_is_invariant_to_how_the_file_is_written() {
         "near-singular ratio {ratio:.3}"
     );
     let back = input_from_original.matrix3.inverse();
-    let field = |m: &FaceModel, name: &str| -> Vec<DVec3> {
-        let (sliders, _) = facebem::expressions::sliders_for_name(name, m.muscle_ids()).unwrap();
-        let posed = m.pose(&sliders).unwrap();
-        posed
-            .iter()
-            .zip(&m.mesh.vertices)
-            .map(|(p, v)| *p - *v)
-            .collect()
-    };
+    let field = support::named_field;
     let mut worst = (0.0f64, "");
     for e in facebem::expressions::arkit::EXPRESSIONS {
         let a = field(&base, e.name);

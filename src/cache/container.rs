@@ -40,7 +40,7 @@ pub const MAGIC: [u8; 8] = *b"FACEBEM\x1a";
 /// `PrecomputeReport::force_peak_ratio`; 27: the modiolus muscles pin the modiolus,
 /// [`face_prep::modiolus`]; 28: the zygomaticus's origin further out, the pins along the skin;
 /// 29: the report says why a large face's edge-collapse copy was replaced by a remeshed one).
-pub const FORMAT_VERSION: u32 = 29;
+pub const FORMAT_VERSION: u32 = 30;
 /// Size of the fixed header in bytes.
 pub const HEADER_LEN: usize = 8 + 4 + 32 + 32 + 8 + 32;
 

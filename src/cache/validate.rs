@@ -83,7 +83,7 @@ pub fn validate_model(model: &FaceModel) -> Result<(), String> {
         check_simplified(s, model.mesh.vertices.len())?;
     }
     if let Some(text) = &model.obj_source {
-        check_obj_source(text, &model.mesh.input_to_vertex)?;
+        check_obj_source(text, &model.mesh)?;
     }
     check_numbers(model)?;
     let nu = model.params.poisson;
@@ -96,9 +96,9 @@ pub fn validate_model(model: &FaceModel) -> Result<(), String> {
 /// The user's OBJ text kept for exports: read by the exports' own rules (those of the face
 /// reader, [`face_prep::obj_text`]: finite numbers, faces referring to lines above them), with
 /// one `v` line per input position, every position within [`MAX_COORDINATE`].
-fn check_obj_source(text: &str, input_to_vertex: &[Option<u32>]) -> Result<(), String> {
+fn check_obj_source(text: &str, mesh: &face_prep::FaceMesh) -> Result<(), String> {
     let layout =
-        ExportLayout::from_obj(text, input_to_vertex).map_err(|e| format!("its OBJ text: {e}"))?;
+        ExportLayout::from_obj_for(text, mesh).map_err(|e| format!("its OBJ text: {e}"))?;
     check_points("OBJ source position", &layout.positions)
 }
 

@@ -104,6 +104,25 @@ impl ExportLayout {
     /// assert_eq!(layout.uvs.unwrap()[4], [0.5, 0.0]); // (u, 1 - v)
     /// ```
     pub fn from_obj(text: &str, input_to_vertex: &[Option<u32>]) -> Result<Self, LayoutError> {
+        Self::build_from_obj(text, input_to_vertex, None)
+    }
+
+    /// The layout of an OBJ text for the face mesh `mesh` loaded from it: as
+    /// [`ExportLayout::from_obj`], and where the mouth came closed and was cut open
+    /// ([`face_prep::FaceMesh::lip_line`]) each face corner on the lip line takes its own lip's
+    /// vertex. A `v` line only the lower lip uses becomes the lower lip's vertex; one both lips
+    /// share (a slit) stays the upper lip's, and the lower lip's corners get a copy appended,
+    /// so the exported mouth can open.
+    pub fn from_obj_for(text: &str, mesh: &face_prep::FaceMesh) -> Result<Self, LayoutError> {
+        let sides = mesh.lip_line.as_ref().map(|line| LipSides::new(mesh, line));
+        Self::build_from_obj(text, &mesh.input_to_vertex, sides.as_ref())
+    }
+
+    fn build_from_obj(
+        text: &str,
+        input_to_vertex: &[Option<u32>],
+        sides: Option<&LipSides>,
+    ) -> Result<Self, LayoutError> {
         // The reader's own rules: what it accepted parses here the same way.
         let obj = obj_text::parse(text)?;
         let positions = obj.positions;
@@ -133,28 +152,62 @@ impl ExportLayout {
             normals: any_vn.then(|| vec![None; n]),
             triangles: Vec::new(),
         };
-        // The (vt, vn) each `v` was first used with, and the copies made for other pairs.
-        let mut first_use: Vec<Option<(Option<usize>, Option<usize>)>> = vec![None; n];
-        let mut copies: HashMap<Corner, u32> = HashMap::new();
+        // Each polygon's welded vertices, its lip's where a lip line was cut.
+        let mut resolved: Vec<Vec<u32>> = Vec::with_capacity(faces.len());
         for (line, corners) in &faces {
-            let mut ids = Vec::with_capacity(corners.len());
+            let mut welded = Vec::with_capacity(corners.len());
             for c in corners {
-                if input_to_vertex[c.v].is_none() {
-                    return Err(LayoutError::UnusedVertex {
-                        line: *line,
-                        vertex: c.v + 1,
-                    });
-                }
-                let id = match first_use[c.v] {
+                match input_to_vertex[c.v] {
+                    Some(w) => welded.push(w),
                     None => {
+                        return Err(LayoutError::UnusedVertex {
+                            line: *line,
+                            vertex: c.v + 1,
+                        });
+                    }
+                }
+            }
+            if let Some(sides) = sides {
+                sides.resolve(&mut welded);
+            }
+            resolved.push(welded);
+        }
+        // A `v` line keeps its own welded vertex when any face uses it so; one that only the
+        // lower lip uses takes the lower lip's.
+        let mut keeps = vec![false; n];
+        let mut other = vec![None; n];
+        for ((_, corners), welded) in faces.iter().zip(&resolved) {
+            for (c, &w) in corners.iter().zip(welded) {
+                if Some(w) == input_to_vertex[c.v] {
+                    keeps[c.v] = true;
+                } else {
+                    other[c.v].get_or_insert(w);
+                }
+            }
+        }
+        for v in 0..n {
+            if !keeps[v] && other[v].is_some() {
+                layout.welded[v] = other[v];
+            }
+        }
+        // The (vt, vn) each `v` was first used with, and the copies made for other pairs or for
+        // the other lip.
+        let mut first_use: Vec<Option<(Option<usize>, Option<usize>)>> = vec![None; n];
+        let mut copies: HashMap<(Corner, u32), u32> = HashMap::new();
+        for ((_, corners), welded) in faces.iter().zip(&resolved) {
+            let mut ids = Vec::with_capacity(corners.len());
+            for (c, &w) in corners.iter().zip(welded) {
+                let own = layout.welded[c.v] == Some(w);
+                let id = match first_use[c.v] {
+                    None if own => {
                         first_use[c.v] = Some((c.vt, c.vn));
                         layout.set_attributes(c.v, c, &tex, &nor);
                         c.v as u32
                     }
-                    Some(pair) if pair == (c.vt, c.vn) => c.v as u32,
-                    Some(_) => *copies.entry(*c).or_insert_with(|| {
+                    Some(pair) if own && pair == (c.vt, c.vn) => c.v as u32,
+                    _ => *copies.entry((*c, w)).or_insert_with(|| {
                         let id = layout.welded.len();
-                        layout.welded.push(input_to_vertex[c.v]);
+                        layout.welded.push(Some(w));
                         layout.positions.push(positions[c.v]);
                         layout.input_index.push(c.v as u32);
                         if let Some(uvs) = &mut layout.uvs {
@@ -243,6 +296,59 @@ pub fn obj_text_of_gltf(data: &face_prep::GltfFaceData) -> String {
         out.push('\n');
     }
     out
+}
+
+/// The lip a face corner on a cut lip line belongs to: every triangle of the face mesh by its
+/// corners with the lower lip's copies read as the upper lip's vertices.
+struct LipSides {
+    /// Sorted corners (copies read as their upper vertex) → the triangle's own corners.
+    by_key: HashMap<[u32; 3], [u32; 3]>,
+    /// Lower-lip copy → upper-lip vertex.
+    upper_of: HashMap<u32, u32>,
+}
+
+impl LipSides {
+    fn new(mesh: &face_prep::FaceMesh, line: &face_prep::frame::lip_line::LipLine) -> LipSides {
+        let upper_of: HashMap<u32, u32> = line
+            .lower
+            .iter()
+            .zip(line.upper.iter().skip(1))
+            .map(|(&l, &u)| (l, u))
+            .collect();
+        let by_key = mesh
+            .triangles
+            .iter()
+            .filter(|t| t.iter().any(|v| upper_of.contains_key(v)))
+            .map(|t| {
+                let mut key = t.map(|v| upper_of.get(&v).copied().unwrap_or(v));
+                key.sort_unstable();
+                (key, *t)
+            })
+            .collect();
+        LipSides { by_key, upper_of }
+    }
+
+    /// Replaces the welded vertices of one polygon's corners (upper-lip vertices on the line)
+    /// by the vertices its triangles use (fan-triangulated as the reader does).
+    fn resolve(&self, welded: &mut [u32]) {
+        let original = welded.to_vec();
+        for k in 2..original.len() {
+            let corners = [0, k - 1, k];
+            let mut key = corners.map(|i| original[i]);
+            key.sort_unstable();
+            let Some(actual) = self.by_key.get(&key) else {
+                continue;
+            };
+            for i in corners {
+                if let Some(&v) = actual
+                    .iter()
+                    .find(|&&v| self.upper_of.get(&v).copied().unwrap_or(v) == original[i])
+                {
+                    welded[i] = v;
+                }
+            }
+        }
+    }
 }
 
 #[cfg(test)]

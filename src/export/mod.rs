@@ -61,9 +61,20 @@ impl crate::FaceModel {
     pub fn obj_text(&self, sliders: &[f64]) -> Result<String, ExportError> {
         let posed = self.basis.pose(sliders)?;
         Ok(match &self.obj_source {
-            Some(text) => obj::pose_from_template(text, &self.mesh.input_to_vertex, &posed)?,
+            Some(text) => obj::pose_from_template(text, &self.input_vertices(text)?, &posed)?,
             None => obj::plain_obj(&posed, &self.basis.triangles)?,
         })
+    }
+
+    /// Per `v` line of the face's OBJ text `text`, the vertex of the face mesh its pose takes:
+    /// [`face_prep::FaceMesh::input_to_vertex`], except that a `v` line only the lower lip of
+    /// a cut lip line uses takes the lower lip's vertex ([`ExportLayout::from_obj_for`]).
+    pub fn input_vertices(&self, text: &str) -> Result<Vec<Option<u32>>, ExportError> {
+        if self.mesh.lip_line.is_none() {
+            return Ok(self.mesh.input_to_vertex.clone());
+        }
+        let layout = ExportLayout::from_obj_for(text, &self.mesh)?;
+        Ok(layout.welded[..layout.input_count].to_vec())
     }
 
     /// Writes the pose `sliders` as OBJ to `path` (atomically).
@@ -76,7 +87,7 @@ impl crate::FaceModel {
     /// file ([`ExportLayout::from_obj`]), otherwise the welded vertices.
     pub fn export_layout(&self) -> Result<ExportLayout, ExportError> {
         Ok(match &self.obj_source {
-            Some(text) => ExportLayout::from_obj(text, &self.mesh.input_to_vertex)?,
+            Some(text) => ExportLayout::from_obj_for(text, &self.mesh)?,
             None => ExportLayout::welded(&self.basis.neutral, &self.basis.triangles),
         })
     }

@@ -41,6 +41,15 @@ pub fn describe(path: &Path, mesh: &FaceMesh, rig: &FaceRig, model: Option<&Face
     for w in model.map(|m| m.report.warnings()).unwrap_or_default() {
         let _ = writeln!(s, "  WARNING: {w}");
     }
+    if let Some(line) = &mesh.lip_line {
+        let _ = writeln!(
+            s,
+            "  mouth: closed in the neutral (the lips meet along {} vertices, corner to corner); \
+             cut open along that line, {} lower-lip vertices added",
+            line.upper.len(),
+            line.lower.len()
+        );
+    }
     let l = &rig.loops;
     let _ = writeln!(
         s,

@@ -209,3 +209,15 @@ pub fn above_the_jaw_y(m: &facebem::FaceModel) -> f64 {
         .fold(0.0, f64::max);
     m.rig.jaw().hinge.y + longest_edge
 }
+
+/// Displacement field (input frame, mesh units) of a named expression — a facebem preset, an
+/// ARKit name or a VRM preset — on a model.
+pub fn named_field(m: &facebem::FaceModel, name: &str) -> Vec<glam::DVec3> {
+    let (sliders, _) = facebem::expressions::sliders_for_name(name, m.muscle_ids()).unwrap();
+    let posed = m.pose(&sliders).unwrap();
+    posed
+        .iter()
+        .zip(&m.mesh.vertices)
+        .map(|(p, v)| *p - *v)
+        .collect()
+}

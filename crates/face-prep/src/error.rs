@@ -411,6 +411,16 @@ pub enum PrepError {
         /// Size and bounding box of each loop found.
         loops: Vec<LoopSummary>,
     },
+    /// Three boundary loops (the contour and two eyes) and no closed mouth found on the surface
+    /// ([`crate::frame::lip_line`]).
+    #[error(
+        "expected 4 boundary loops (face contour, 2 eyes, mouth), found 3 and no closed mouth: \
+         {reason}"
+    )]
+    NoMouth {
+        /// Why no lip contact line was found.
+        reason: String,
+    },
     /// The mesh has four loops but is not a front face (e.g. a whole head cut at the neck).
     #[error(
         "not a front face: {reason}. The input must be the front of a face only: one sheet cut \

@@ -98,11 +98,16 @@ pub fn write_export(kind: ExportKind, request: &ExportRequest) -> Result<PathBuf
             let path = path_for("_pose.obj");
             let posed = request.basis.pose(&request.sliders)?;
             let text = match request.model.as_deref() {
-                Some(FaceModel {
-                    obj_source: Some(obj),
-                    mesh,
-                    ..
-                }) => facebem::export::obj::pose_from_template(obj, &mesh.input_to_vertex, &posed)?,
+                Some(
+                    model @ FaceModel {
+                        obj_source: Some(obj),
+                        ..
+                    },
+                ) => facebem::export::obj::pose_from_template(
+                    obj,
+                    &model.input_vertices(obj)?,
+                    &posed,
+                )?,
                 _ => facebem::export::obj::plain_obj(&posed, &request.basis.triangles)?,
             };
             facebem::write_atomic(&path, text.as_bytes())?;
