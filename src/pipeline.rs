@@ -140,6 +140,40 @@ pub fn build_face_model(
     params: &PipelineParams,
     control: &Control,
 ) -> Result<FaceModel, PipelineError> {
+    let mut model = build_shape(mesh, params, control)?;
+    keep_closed_lids(&mut model);
+    Ok(model)
+}
+
+/// The lid controls of an eye that is closed in the neutral ([`crate::model::closed_eyes`]:
+/// lids cut open along their contact line, [`FaceMesh::lid_lines`], or touching) leave it as it
+/// is: blinking a closed eye would push its upper lid through the lower one, and raising the
+/// lid of a closed eye pulls it open; the palpebral orbicularis and the levator of that side get
+/// no response. (The squint's lower lid rises by a fraction of the opening,
+/// [`face_prep::controls::eyelid::SQUINT_RISE_FRACTION`], so it leaves a closed eye alone by
+/// itself. The rig still has the controls, so every named expression keeps its sliders.)
+fn keep_closed_lids(model: &mut FaceModel) {
+    use face_prep::MuscleKind;
+    let [left, right] = crate::model::closed_eyes(model);
+    let kinds = [
+        (left, MuscleKind::OrbicularisOculiPalpebralL),
+        (left, MuscleKind::LevatorPalpebraeL),
+        (right, MuscleKind::OrbicularisOculiPalpebralR),
+        (right, MuscleKind::LevatorPalpebraeR),
+    ];
+    for (closed, kind) in kinds {
+        if closed && let Some(k) = model.basis.muscle_ids.iter().position(|id| id == kind.id()) {
+            model.basis.displacements[k].fill(DVec3::ZERO);
+        }
+    }
+}
+
+/// [`build_face_model`] before the closed lids are kept still.
+fn build_shape(
+    mesh: &FaceMesh,
+    params: &PipelineParams,
+    control: &Control,
+) -> Result<FaceModel, PipelineError> {
     params.validate()?;
     face_prep::check_not_scrambled(&mesh.vertices, &mesh.triangles)?;
     let Some(stand_in) = crate::copy::symmetrize::stand_in(mesh) else {

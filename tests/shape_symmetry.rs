@@ -73,6 +73,7 @@ pub fn retriangulated(mesh: &face_prep::FaceMesh, seed: u64) -> face_prep::FaceM
         triangles,
         input_to_vertex: mesh.input_to_vertex.clone(),
         lip_line: None,
+        lid_lines: Vec::new(),
     }
 }
 

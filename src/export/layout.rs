@@ -114,7 +114,8 @@ impl ExportLayout {
     /// share (a slit) stays the upper lip's, and the lower lip's corners get a copy appended,
     /// so the exported mouth can open.
     pub fn from_obj_for(text: &str, mesh: &face_prep::FaceMesh) -> Result<Self, LayoutError> {
-        let sides = mesh.lip_line.as_ref().map(|line| LipSides::new(mesh, line));
+        let lines: Vec<_> = mesh.lip_line.iter().chain(&mesh.lid_lines).collect();
+        let sides = (!lines.is_empty()).then(|| LipSides::new(mesh, &lines));
         Self::build_from_obj(text, &mesh.input_to_vertex, sides.as_ref())
     }
 
@@ -298,7 +299,7 @@ pub fn obj_text_of_gltf(data: &face_prep::GltfFaceData) -> String {
     out
 }
 
-/// The lip a face corner on a cut lip line belongs to: every triangle of the face mesh by its
+/// The side a face corner on a cut contact line (lips or lids) belongs to: every triangle of the face mesh by its
 /// corners with the lower lip's copies read as the upper lip's vertices.
 struct LipSides {
     /// Sorted corners (copies read as their upper vertex) → the triangle's own corners.
@@ -308,11 +309,13 @@ struct LipSides {
 }
 
 impl LipSides {
-    fn new(mesh: &face_prep::FaceMesh, line: &face_prep::frame::lip_line::LipLine) -> LipSides {
-        let upper_of: HashMap<u32, u32> = line
-            .lower
+    fn new(
+        mesh: &face_prep::FaceMesh,
+        lines: &[&face_prep::frame::contact::ContactLine],
+    ) -> LipSides {
+        let upper_of: HashMap<u32, u32> = lines
             .iter()
-            .zip(line.upper.iter().skip(1))
+            .flat_map(|line| line.lower.iter().zip(line.upper.iter().skip(1)))
             .map(|(&l, &u)| (l, u))
             .collect();
         let by_key = mesh

@@ -70,7 +70,7 @@ impl crate::FaceModel {
     /// [`face_prep::FaceMesh::input_to_vertex`], except that a `v` line only the lower lip of
     /// a cut lip line uses takes the lower lip's vertex ([`ExportLayout::from_obj_for`]).
     pub fn input_vertices(&self, text: &str) -> Result<Vec<Option<u32>>, ExportError> {
-        if self.mesh.lip_line.is_none() {
+        if self.mesh.lip_line.is_none() && self.mesh.lid_lines.is_empty() {
             return Ok(self.mesh.input_to_vertex.clone());
         }
         let layout = ExportLayout::from_obj_for(text, &self.mesh)?;

@@ -4,6 +4,7 @@
 //! types; none of them imports the orchestration ([`crate::pipeline`]).
 
 mod basis;
+mod closed_eyes;
 mod error;
 mod params;
 mod report;
@@ -18,6 +19,7 @@ use crate::frame::InputFrame;
 pub use crate::transfer::SimplifiedFace;
 
 pub use basis::{MuscleBasis, PoseError};
+pub use closed_eyes::{CLOSED_EYE_AREA_FRACTION, closed_eyes, eye_openings};
 pub use error::PipelineError;
 pub use params::{ParamError, PipelineParams};
 pub use report::{PrecomputeReport, SUSPICIOUS_AMPLIFICATION, SUSPICIOUS_FORCE_PEAK};

@@ -50,6 +50,30 @@ pub fn describe(path: &Path, mesh: &FaceMesh, rig: &FaceRig, model: Option<&Face
             line.lower.len()
         );
     }
+    let closed = model.map_or([false; 2], crate::model::closed_eyes);
+    if closed.iter().any(|&c| c) || !mesh.lid_lines.is_empty() {
+        let which = match closed {
+            [true, true] => "both",
+            [true, false] => "the left",
+            [false, true] => "the right",
+            [false, false] => "no",
+        };
+        let cut: Vec<String> = mesh
+            .lid_lines
+            .iter()
+            .map(|l| l.upper.len().to_string())
+            .collect();
+        let _ = writeln!(
+            s,
+            "  eyes: closed in the neutral ({which}; lid lines cut open: {}); blink, lid raise \
+             and squint leave a closed eye as it is",
+            if cut.is_empty() {
+                "none, the lids touch".to_string()
+            } else {
+                format!("{} vertices", cut.join(" and "))
+            }
+        );
+    }
     let l = &rig.loops;
     let _ = writeln!(
         s,

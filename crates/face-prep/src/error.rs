@@ -412,13 +412,23 @@ pub enum PrepError {
         loops: Vec<LoopSummary>,
     },
     /// Three boundary loops (the contour and two eyes) and no closed mouth found on the surface
-    /// ([`crate::frame::lip_line`]).
+    /// ([`crate::frame::contact::mouth`]).
     #[error(
         "expected 4 boundary loops (face contour, 2 eyes, mouth), found 3 and no closed mouth: \
          {reason}"
     )]
     NoMouth {
         /// Why no lip contact line was found.
+        reason: String,
+    },
+    /// Two boundary loops (the contour and the mouth) and no closed eyes found on the surface
+    /// ([`crate::frame::contact::lids`]).
+    #[error(
+        "expected 4 boundary loops (face contour, 2 eyes, mouth), found 2 (no eye openings) and \
+         no closed eyes: {reason}"
+    )]
+    NoEyes {
+        /// Why no lid contact lines were found.
         reason: String,
     },
     /// The mesh has four loops but is not a front face (e.g. a whole head cut at the neck).

@@ -1,7 +1,7 @@
 //! The validated, welded input face mesh and its loaders (OBJ through tobj, glTF/GLB through gltf).
 
 use crate::error::PrepError;
-use crate::frame::lip_line::{self, LipLine};
+use crate::frame::contact::{self, ContactLine};
 use crate::frame::topology;
 use crate::input::gltf_read::{self, Document};
 use crate::input::limits::{InputLimits, MAX_COORDINATE, read_input_file};
@@ -24,13 +24,18 @@ pub struct FaceMesh {
     /// For every input position (OBJ `v` line order, or glTF POSITION accessor order concatenated
     /// over the mesh's primitives) the welded vertex it became, or `None` if no face used it.
     /// Exports use this to write poses in the user's own vertex order. An input position on a
-    /// closed mouth's lip line maps to the upper lip's vertex; which lip a face corner there
-    /// belongs to follows from [`FaceMesh::triangles`] (see [`FaceMesh::lip_line`]).
+    /// closed mouth's (eye's) contact line maps to the upper lip's (lid's) vertex; which side a
+    /// face corner there belongs to follows from [`FaceMesh::triangles`] (see
+    /// [`FaceMesh::lip_line`]).
     pub input_to_vertex: Vec<Option<u32>>,
     /// The lips' contact line when the mouth came closed (three loops: the lips share vertices
-    /// or touch at coincident ones) and was cut open ([`crate::frame::lip_line`]): the lower
+    /// or touch at coincident ones) and was cut open ([`crate::frame::contact`]): the lower
     /// lip's copies are appended after the welded input vertices.
-    pub lip_line: Option<LipLine>,
+    pub lip_line: Option<ContactLine>,
+    /// The lids' contact lines when the eyes came closed (two loops) and were cut open, the
+    /// lower lids' copies appended like the lips'. The rig's lid controls leave a closed eye
+    /// alone.
+    pub lid_lines: Vec<ContactLine>,
 }
 
 /// A position must be finite and within [`MAX_COORDINATE`] of the origin.
@@ -225,12 +230,13 @@ impl FaceMesh {
             },
             other => other,
         })?;
-        let (vertices, triangles, loops, lip_line) =
-            match lip_line::open_closed_mouth(&vertices, &triangles, &loops)? {
-                None => (vertices, triangles, loops, None),
+        let (vertices, triangles, loops, lip_line, lid_lines) =
+            match contact::open_closed_features(&vertices, &triangles, &loops)? {
+                None => (vertices, triangles, loops, None, Vec::new()),
                 Some(opened) => {
                     let loops = topology::validate(&opened.vertices, &opened.triangles)?;
-                    (opened.vertices, opened.triangles, loops, Some(opened.line))
+                    let (v, t) = (opened.vertices, opened.triangles);
+                    (v, t, loops, opened.lips, opened.lids)
                 }
             };
         topology::check_four_loops(&vertices, &loops)?;
@@ -239,6 +245,7 @@ impl FaceMesh {
             triangles,
             input_to_vertex,
             lip_line,
+            lid_lines,
         })
     }
 

@@ -1,0 +1,160 @@
+//! The lips' contact line of a face with three boundary loops (the contour and two open eyes).
+//!
+//! The two loops of smallest perimeter are the eyes; their centroids give the eye line and the
+//! interocular distance `iod`; the surface's area-weighted normal gives the front. The nose tip
+//! (the front-most point between the eyes' columns) says which way is down. The lips meet on the
+//! face's centre line between [`MOUTH_BELOW_NOSE_IOD`]`.0` and `.1` interocular distances below
+//! the nose tip: the seed is the sharpest valley edge there within [`SEED_HALF_WIDTH_IOD`] of the
+//! centre line, and the line is traced from it to both corners, no further than
+//! [`MAX_HALF_WIDTH_IOD`] from the centre line, and must span [`MIN_WIDTH_IOD`].
+
+use super::{ContactLine, MIN_SEED_FOLD_RAD, Opened, Surface, TraceRule, cut};
+use crate::error::PrepError;
+use crate::frame::orient::{loop_centroid, loop_perimeter};
+use glam::DVec3;
+
+/// The lips meet between this many interocular distances below the nose tip (the mouth line
+/// lies 0.35–0.5 iod below the nose tip on adult faces: subnasale-to-stomion about 20–23 mm,
+/// nose tip to subnasale about 10–15 mm, iod about 63 mm; Farkas, *Anthropometry of the Head
+/// and Face*, 1994). The window is wide so that long and short faces fit.
+pub const MOUTH_BELOW_NOSE_IOD: (f64, f64) = (0.15, 1.0);
+/// The seed edge's midpoint lies within this many interocular distances of the centre line.
+pub const SEED_HALF_WIDTH_IOD: f64 = 0.12;
+/// Least width of the found line (corner to corner, along the eye line), interocular
+/// distances: a mouth is 0.65–0.9 iod wide.
+pub const MIN_WIDTH_IOD: f64 = 0.25;
+/// Widest the line may run to either side of the centre line, interocular distances: the
+/// mouth's width is 0.65–0.9 interocular distances (Farkas 1994: 50 ± 3.5 mm against 62 ± 3 mm
+/// between the pupils).
+pub const MAX_HALF_WIDTH_IOD: f64 = 0.45;
+
+/// The lips' trace goes on while an edge folds by half the line's sharpest fold so far.
+pub const LIP_TRACE: TraceRule = TraceRule {
+    fraction: 0.5,
+    least_rad: 0.0,
+};
+
+/// The face's frame for the search: eye midpoint, unit eye-line direction, unit "down" in the
+/// front plane, interocular distance, and how far below the eyes the nose tip is.
+struct SearchFrame {
+    eyes_mid: DVec3,
+    across: DVec3,
+    down: DVec3,
+    iod: f64,
+    nose_below_eyes: f64,
+}
+
+fn search_frame(
+    vertices: &[DVec3],
+    triangles: &[[u32; 3]],
+    loops: &[Vec<u32>],
+) -> Option<SearchFrame> {
+    let mut by_perimeter: Vec<usize> = (0..loops.len()).collect();
+    by_perimeter.sort_by(|&a, &b| {
+        loop_perimeter(vertices, &loops[a]).total_cmp(&loop_perimeter(vertices, &loops[b]))
+    });
+    let (e1, e2) = (
+        loop_centroid(vertices, &loops[by_perimeter[0]]),
+        loop_centroid(vertices, &loops[by_perimeter[1]]),
+    );
+    let iod = e1.distance(e2);
+    if !iod.is_finite() || iod <= 0.0 {
+        return None;
+    }
+    let across = (e2 - e1) / iod;
+    let front = super::lids::area_normal(vertices, triangles);
+    let front = (front - front.dot(across) * across).try_normalize()?;
+    let up_or_down = front.cross(across);
+    let eyes_mid = 0.5 * (e1 + e2);
+    let tip = vertices
+        .iter()
+        .filter(|p| {
+            let r = **p - eyes_mid;
+            r.dot(across).abs() < 0.35 * iod && r.dot(up_or_down).abs() < 1.5 * iod
+        })
+        .max_by(|a, b| {
+            (**a - eyes_mid)
+                .dot(front)
+                .total_cmp(&(**b - eyes_mid).dot(front))
+        })?;
+    let along = (*tip - eyes_mid).dot(up_or_down);
+    let down = if along >= 0.0 {
+        up_or_down
+    } else {
+        -up_or_down
+    };
+    Some(SearchFrame {
+        eyes_mid,
+        across,
+        down,
+        iod,
+        nose_below_eyes: along.abs(),
+    })
+}
+
+/// Finds the lips' contact line of a face with three boundary loops (the contour and two eyes)
+/// and cuts it open; an error naming what is missing when no line is found.
+///
+/// ```
+/// use face_prep::frame::contact::mouth::open_closed_mouth;
+/// use face_prep::PrepError;
+/// use glam::DVec3;
+/// // Three triangles far apart are not a face: no eyes to look for the mouth from.
+/// let v: Vec<DVec3> = (0..9).map(|i| DVec3::new(i as f64, (i % 3) as f64, 0.0)).collect();
+/// let err = open_closed_mouth(&v, &[[0, 1, 2]], &[vec![0], vec![3], vec![6]]);
+/// assert!(matches!(err, Err(PrepError::NoMouth { .. })));
+/// ```
+pub fn open_closed_mouth(
+    vertices: &[DVec3],
+    triangles: &[[u32; 3]],
+    loops: &[Vec<u32>],
+) -> Result<Opened, PrepError> {
+    let no_mouth = |reason: String| PrepError::NoMouth { reason };
+    let frame = search_frame(vertices, triangles, loops)
+        .ok_or_else(|| no_mouth("the eyes and the front could not be placed".into()))?;
+    let surface = Surface::new(vertices, triangles, loops);
+    let iod = frame.iod;
+    let across_of = |x: DVec3| (x - frame.eyes_mid).dot(frame.across);
+    let below_eyes = |x: DVec3| (x - frame.eyes_mid).dot(frame.down);
+    let (lo, hi) = (
+        frame.nose_below_eyes + MOUTH_BELOW_NOSE_IOD.0 * iod,
+        frame.nose_below_eyes + MOUTH_BELOW_NOSE_IOD.1 * iod,
+    );
+    let Some((seed_fold, a, b)) = surface.sharpest_edge(|m| {
+        across_of(m).abs() <= SEED_HALF_WIDTH_IOD * iod && (lo..=hi).contains(&below_eyes(m))
+    }) else {
+        return Err(no_mouth(
+            "no surface below the nose to look for the lips in".into(),
+        ));
+    };
+    if seed_fold < MIN_SEED_FOLD_RAD {
+        return Err(no_mouth(format!(
+            "the sharpest fold below the nose is {:.0}°, lips that meet fold by {:.0}° at least",
+            seed_fold.to_degrees(),
+            MIN_SEED_FOLD_RAD.to_degrees()
+        )));
+    }
+    let front = frame.across.cross(frame.down);
+    let line = surface.trace((a, b), seed_fold, LIP_TRACE, frame.across, front, |x| {
+        across_of(x).abs() <= MAX_HALF_WIDTH_IOD * iod
+    });
+    let width = across_of(surface.p(line[line.len() - 1])) - across_of(surface.p(line[0]));
+    if line.len() < 3 || width < MIN_WIDTH_IOD * iod {
+        return Err(no_mouth(format!(
+            "the fold below the nose ({:.0}°) runs {:.2} eye distances, a mouth is {:.2} wide at \
+             least",
+            seed_fold.to_degrees(),
+            width / iod,
+            MIN_WIDTH_IOD
+        )));
+    }
+    let mut out_vertices = vertices.to_vec();
+    let mut out_triangles = triangles.to_vec();
+    let lips: ContactLine = cut(&mut out_vertices, &mut out_triangles, &line, frame.down);
+    Ok(Opened {
+        vertices: out_vertices,
+        triangles: out_triangles,
+        lips: Some(lips),
+        lids: Vec::new(),
+    })
+}
