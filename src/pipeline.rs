@@ -154,7 +154,7 @@ pub fn build_face_model(
 /// itself. The rig still has the controls, so every named expression keeps its sliders.)
 fn keep_closed_lids(model: &mut FaceModel) {
     use face_prep::MuscleKind;
-    let [left, right] = crate::model::closed_eyes(model);
+    let [left, right] = crate::model::closed_eyes(&model.mesh, model.rig.canonical_from_input);
     let kinds = [
         (left, MuscleKind::OrbicularisOculiPalpebralL),
         (left, MuscleKind::LevatorPalpebraeL),

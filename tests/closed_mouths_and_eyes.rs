@@ -187,7 +187,10 @@ fn closed_eyes_are_found_and_their_lids_stay_as_they_are() {
         info.contains("eyes: closed in the neutral (both; lid lines cut open: 10"),
         "{info}"
     );
-    assert_eq!(facebem::model::closed_eyes(&m), [true, true]);
+    assert_eq!(
+        facebem::model::closed_eyes(&m.mesh, m.rig.canonical_from_input),
+        [true, true]
+    );
     for id in [
         "orbicularis_oculi_palpebral_l",
         "orbicularis_oculi_palpebral_r",
@@ -242,9 +245,12 @@ fn touching_lids_count_as_closed_and_open_eyes_do_not() {
     let (_, [e1, e2]) = mouth_and_eyes(&face);
     let v = touching_positions(&face, &[&e1, &e2]);
     let m = build(&face_prep::FaceMesh::from_triangles(&v, &face.triangles).unwrap());
-    let openings = facebem::model::eye_openings(&m).unwrap();
+    let openings = facebem::model::eye_openings(&m.mesh, m.rig.canonical_from_input).unwrap();
     assert!(openings.iter().all(|&o| o < 1e-4), "{openings:?}");
-    assert_eq!(facebem::model::closed_eyes(&m), [true, true]);
+    assert_eq!(
+        facebem::model::closed_eyes(&m.mesh, m.rig.canonical_from_input),
+        [true, true]
+    );
     for id in ["orbicularis_oculi_palpebral_l", "levator_palpebrae_r"] {
         let k = m.muscle_ids().iter().position(|i| i == id).unwrap();
         assert!(
@@ -270,7 +276,7 @@ fn touching_lids_count_as_closed_and_open_eyes_do_not() {
     for name in support::FACES {
         let mesh = face_prep::load_face(&support::asset(name)).unwrap();
         let m = build(&mesh);
-        let openings = facebem::model::eye_openings(&m).unwrap();
+        let openings = facebem::model::eye_openings(&m.mesh, m.rig.canonical_from_input).unwrap();
         eprintln!("{name}: eye openings {openings:?}");
         assert!(
             openings

@@ -108,21 +108,21 @@ impl ExportLayout {
     }
 
     /// The layout of an OBJ text for the face mesh `mesh` loaded from it: as
-    /// [`ExportLayout::from_obj`], and where the mouth came closed and was cut open
-    /// ([`face_prep::FaceMesh::lip_line`]) each face corner on the lip line takes its own lip's
-    /// vertex. A `v` line only the lower lip uses becomes the lower lip's vertex; one both lips
-    /// share (a slit) stays the upper lip's, and the lower lip's corners get a copy appended,
-    /// so the exported mouth can open.
+    /// [`ExportLayout::from_obj`], and where the mouth or the eyes came closed and were cut
+    /// open ([`face_prep::FaceMesh::lip_line`], [`face_prep::FaceMesh::lid_lines`]) each face
+    /// corner on a cut line takes its own side's vertex. A `v` line only the lower lip (lid)
+    /// uses becomes the lower side's vertex; one both sides share (a slit) stays the upper
+    /// side's, and the lower side's corners get a copy appended, so the exported mouth can open.
     pub fn from_obj_for(text: &str, mesh: &face_prep::FaceMesh) -> Result<Self, LayoutError> {
         let lines: Vec<_> = mesh.lip_line.iter().chain(&mesh.lid_lines).collect();
-        let sides = (!lines.is_empty()).then(|| LipSides::new(mesh, &lines));
+        let sides = (!lines.is_empty()).then(|| CutSides::new(mesh, &lines));
         Self::build_from_obj(text, &mesh.input_to_vertex, sides.as_ref())
     }
 
     fn build_from_obj(
         text: &str,
         input_to_vertex: &[Option<u32>],
-        sides: Option<&LipSides>,
+        sides: Option<&CutSides>,
     ) -> Result<Self, LayoutError> {
         // The reader's own rules: what it accepted parses here the same way.
         let obj = obj_text::parse(text)?;
@@ -153,7 +153,7 @@ impl ExportLayout {
             normals: any_vn.then(|| vec![None; n]),
             triangles: Vec::new(),
         };
-        // Each polygon's welded vertices, its lip's where a lip line was cut.
+        // Each polygon's welded vertices, its own side's where a contact line was cut.
         let mut resolved: Vec<Vec<u32>> = Vec::with_capacity(faces.len());
         for (line, corners) in &faces {
             let mut welded = Vec::with_capacity(corners.len());
@@ -174,7 +174,7 @@ impl ExportLayout {
             resolved.push(welded);
         }
         // A `v` line keeps its own welded vertex when any face uses it so; one that only the
-        // lower lip uses takes the lower lip's.
+        // lower side of a cut line uses takes the lower side's.
         let mut keeps = vec![false; n];
         let mut other = vec![None; n];
         for ((_, corners), welded) in faces.iter().zip(&resolved) {
@@ -192,7 +192,7 @@ impl ExportLayout {
             }
         }
         // The (vt, vn) each `v` was first used with, and the copies made for other pairs or for
-        // the other lip.
+        // the other side of a cut line.
         let mut first_use: Vec<Option<(Option<usize>, Option<usize>)>> = vec![None; n];
         let mut copies: HashMap<(Corner, u32), u32> = HashMap::new();
         for ((_, corners), welded) in faces.iter().zip(&resolved) {
@@ -299,20 +299,20 @@ pub fn obj_text_of_gltf(data: &face_prep::GltfFaceData) -> String {
     out
 }
 
-/// The side a face corner on a cut contact line (lips or lids) belongs to: every triangle of the face mesh by its
-/// corners with the lower lip's copies read as the upper lip's vertices.
-struct LipSides {
+/// The side a face corner on a cut contact line (lips or lids) belongs to: every triangle of
+/// the face mesh by its corners, with the lower side's copies read as the upper side's vertices.
+struct CutSides {
     /// Sorted corners (copies read as their upper vertex) → the triangle's own corners.
     by_key: HashMap<[u32; 3], [u32; 3]>,
-    /// Lower-lip copy → upper-lip vertex.
+    /// Lower-side copy → upper-side vertex.
     upper_of: HashMap<u32, u32>,
 }
 
-impl LipSides {
+impl CutSides {
     fn new(
         mesh: &face_prep::FaceMesh,
         lines: &[&face_prep::frame::contact::ContactLine],
-    ) -> LipSides {
+    ) -> CutSides {
         let upper_of: HashMap<u32, u32> = lines
             .iter()
             .flat_map(|line| line.lower.iter().zip(line.upper.iter().skip(1)))
@@ -328,10 +328,10 @@ impl LipSides {
                 (key, *t)
             })
             .collect();
-        LipSides { by_key, upper_of }
+        CutSides { by_key, upper_of }
     }
 
-    /// Replaces the welded vertices of one polygon's corners (upper-lip vertices on the line)
+    /// Replaces the welded vertices of one polygon's corners (upper-side vertices on a line)
     /// by the vertices its triangles use (fan-triangulated as the reader does).
     fn resolve(&self, welded: &mut [u32]) {
         let original = welded.to_vec();

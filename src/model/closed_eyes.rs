@@ -3,10 +3,9 @@
 //! no area in the front plane; an open eye's loop has an area of 3 % of its width squared or
 //! more.
 
+use face_prep::FaceMesh;
 use face_prep::orient::canonical_frame;
-use glam::DVec3;
-
-use super::FaceModel;
+use glam::{DAffine3, DVec3};
 
 /// An eye counts as closed when its loop's area in the front plane (the rig's canonical x-y) is
 /// below this fraction of the square of the loop's width (its x extent). Measured on the
@@ -15,19 +14,19 @@ use super::FaceModel;
 /// touch or a cut lid line measure below 10⁻⁴.
 pub const CLOSED_EYE_AREA_FRACTION: f64 = 0.005;
 
-/// Each eye's opening: its loop's area in the front plane over its width squared, for the
-/// face's left eye (+x in the canonical frame) and right eye. `None` when the mesh has no four
-/// loops (a computed model always has).
+/// Each eye's opening: its loop's area in the front plane (the canonical frame's x-y, reached
+/// by `canonical_from_input`, the rig's) over its width squared, for the face's left eye (+x)
+/// and right eye. `None` when the mesh has no four loops (a loaded face mesh always has).
 ///
 /// ```no_run
 /// let mesh = face_prep::load_face("assets/mediapipe_canonical_4loop.obj".as_ref()).unwrap();
 /// let params = facebem::PipelineParams::default();
 /// let model = facebem::build_face_model(&mesh, &params, &facebem::Control::new()).unwrap();
-/// let [left, right] = facebem::model::eye_openings(&model).unwrap();
+/// let [left, right] =
+///     facebem::model::eye_openings(&model.mesh, model.rig.canonical_from_input).unwrap();
 /// assert!(left > facebem::model::CLOSED_EYE_AREA_FRACTION && (left - right).abs() < 1e-9);
 /// ```
-pub fn eye_openings(model: &FaceModel) -> Option<[f64; 2]> {
-    let mesh = &model.mesh;
+pub fn eye_openings(mesh: &FaceMesh, canonical_from_input: DAffine3) -> Option<[f64; 2]> {
     let loops = face_prep::topology::validate(&mesh.vertices, &mesh.triangles).ok()?;
     if loops.len() != 4 {
         return None;
@@ -36,7 +35,7 @@ pub fn eye_openings(model: &FaceModel) -> Option<[f64; 2]> {
     let canonical: Vec<DVec3> = mesh
         .vertices
         .iter()
-        .map(|&p| model.rig.canonical_from_input.transform_point3(p))
+        .map(|&p| canonical_from_input.transform_point3(p))
         .collect();
     let opening = |lp: &[u32]| {
         let area = 0.5
@@ -66,6 +65,7 @@ pub fn eye_openings(model: &FaceModel) -> Option<[f64; 2]> {
 
 /// Whether the face's left and right eye are closed in the neutral
 /// ([`CLOSED_EYE_AREA_FRACTION`]).
-pub fn closed_eyes(model: &FaceModel) -> [bool; 2] {
-    eye_openings(model).map_or([false; 2], |o| o.map(|f| f < CLOSED_EYE_AREA_FRACTION))
+pub fn closed_eyes(mesh: &FaceMesh, canonical_from_input: DAffine3) -> [bool; 2] {
+    eye_openings(mesh, canonical_from_input)
+        .map_or([false; 2], |o| o.map(|f| f < CLOSED_EYE_AREA_FRACTION))
 }

@@ -50,13 +50,13 @@ pub fn describe(path: &Path, mesh: &FaceMesh, rig: &FaceRig, model: Option<&Face
             line.lower.len()
         );
     }
-    let closed = model.map_or([false; 2], crate::model::closed_eyes);
+    let closed = crate::model::closed_eyes(mesh, rig.canonical_from_input);
     if closed.iter().any(|&c| c) || !mesh.lid_lines.is_empty() {
         let which = match closed {
             [true, true] => "both",
             [true, false] => "the left",
             [false, true] => "the right",
-            [false, false] => "no",
+            [false, false] => "neither",
         };
         let cut: Vec<String> = mesh
             .lid_lines
