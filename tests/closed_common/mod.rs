@@ -399,20 +399,34 @@ pub fn invariance(
         })
         .collect();
     let back = input_from_original.matrix3.inverse();
+    let worst = worst_arkit_target(&base, &other, &of_base, |d| back * d);
+    let ratio = other.report.response_amplification / base.report.response_amplification;
+    (worst.0, worst.1, ratio)
+}
+
+/// The ARKit target of `base` that `other` makes least alike, and by how much: the RMS over
+/// `base`'s vertices of `other`'s field (at vertex `of_base[i]`, carried into `base`'s frame and
+/// units by `to_base`) minus `base`'s, over the target's largest motion.
+pub fn worst_arkit_target(
+    base: &FaceModel,
+    other: &FaceModel,
+    of_base: &[usize],
+    to_base: impl Fn(DVec3) -> DVec3,
+) -> (f64, &'static str) {
     let mut worst = (0.0f64, "");
     for e in arkit::EXPRESSIONS {
         if e.resolve(base.muscle_ids()).is_none() {
             continue;
         }
-        let (a, b) = (field(&base, e.name), field(&other, e.name));
+        let (a, b) = (field(base, e.name), field(other, e.name));
         let largest = a.iter().map(|d| d.length()).fold(0.0, f64::max);
         if largest == 0.0 {
             continue;
         }
         let rms = (a
             .iter()
-            .zip(&of_base)
-            .map(|(d, &o)| (back * b[o] - *d).length_squared())
+            .zip(of_base)
+            .map(|(d, &o)| (to_base(b[o]) - *d).length_squared())
             .sum::<f64>()
             / a.len() as f64)
             .sqrt();
@@ -420,6 +434,5 @@ pub fn invariance(
             worst = (rms / largest, e.name);
         }
     }
-    let ratio = other.report.response_amplification / base.report.response_amplification;
-    (worst.0, worst.1, ratio)
+    worst
 }
