@@ -291,3 +291,78 @@ fn ict_jaw_open_matches_the_captured_jaw_open() {
     eprintln!("jaw_open vs captured jawOpen: cosine {cos:.3}");
     assert!(cos >= 0.7, "cosine {cos:.3}");
 }
+
+/// The contour's lowest point: on the ICT faces it lies on the neck, 32 mm below the chin; on
+/// the masks it is under the chin.
+fn lowest_contour_point(p: &JawPoints) -> usize {
+    p.lm.loops
+        .face
+        .iter()
+        .map(|&v| v as usize)
+        .min_by(|&a, &b| p.canon[a].y.total_cmp(&p.canon[b].y))
+        .expect("a contour")
+}
+
+/// Issue 30, item 5: the jaw moves the mandible's skin and not the neck. On a face whose contour
+/// runs down the neck (`on_neck`: the ICT faces), jawOpen at full activation moves the contour's
+/// lowest point at most 15 mm and jawLeft (lateral, −1) at most 5 mm, while the lower lip still
+/// drops 25–45 mm (ICT's captured jawOpen moves that point 11.5 mm: 11.0 down, 3.3 back). On a
+/// mask cut at the chin the lowest point is on the mandible and moves with it: at least 80 % of
+/// the lower lip's motion in jawOpen and 90 % of the lateral shift.
+fn the_neck_stays_while_the_jaw_opens(face: usize, on_neck: bool) {
+    let m = model(face);
+    let p = points(m);
+    let lowest = lowest_contour_point(&p);
+    let open = field_mm(m, &p, MuscleKind::JawOpen, -1.0);
+    let lateral = field_mm(m, &p, MuscleKind::JawLateral, -1.0);
+    let (neck_open, neck_lateral) = (open[lowest].length(), lateral[lowest].length());
+    let (lip_drop, lip) = (-open[p.lower_lip].y, open[p.lower_lip].length());
+    let below_chin_mm = (p.canon[p.chin].y - p.canon[lowest].y) * p.lm.mm_per_unit;
+    eprintln!(
+        "{}: lowest contour point ({below_chin_mm:.1} mm below the chin) moves {neck_open:.1} mm \
+         in jawOpen ({:.1} down, {:.1} back), {neck_lateral:.1} mm in jawLeft; lower lip \
+         {lip_drop:.1} mm down ({lip:.1} in all)",
+        support::FACES[face],
+        -open[lowest].y,
+        -open[lowest].z,
+    );
+    assert!(
+        (25.0..=45.0).contains(&lip_drop),
+        "lower lip {lip_drop:.1} mm down"
+    );
+    if on_neck {
+        assert!(
+            neck_open <= 15.0,
+            "jawOpen moves the neck {neck_open:.1} mm"
+        );
+        assert!(
+            neck_lateral <= 5.0,
+            "jawLeft moves the neck {neck_lateral:.1} mm"
+        );
+    } else {
+        assert!(
+            neck_open >= 0.8 * lip,
+            "the chin's contour moves {neck_open:.1} mm"
+        );
+        assert!(
+            neck_lateral >= 0.9 * 8.0,
+            "the chin's contour moves {neck_lateral:.1} mm"
+        );
+    }
+}
+
+#[test]
+fn ict_13k_the_neck_stays_while_the_jaw_opens() {
+    the_neck_stays_while_the_jaw_opens(3, true);
+}
+
+#[test]
+fn ict_2500_the_neck_stays_while_the_jaw_opens() {
+    the_neck_stays_while_the_jaw_opens(1, true);
+}
+
+#[test]
+fn masks_cut_at_the_chin_keep_their_chin_on_the_jaw() {
+    the_neck_stays_while_the_jaw_opens(0, false);
+    the_neck_stays_while_the_jaw_opens(2, false);
+}

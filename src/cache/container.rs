@@ -39,8 +39,10 @@ pub const MAGIC: [u8; 8] = *b"FACEBEM\x1a";
 /// combination; 23: the mid and lower face relaxed for the lengthened direction too; 25: `LargeFaceParams::method`, remeshed copies; 26:
 /// `PrecomputeReport::force_peak_ratio`; 27: the modiolus muscles pin the modiolus,
 /// [`face_prep::modiolus`]; 28: the zygomaticus's origin further out, the pins along the skin;
-/// 29: the report says why a large face's edge-collapse copy was replaced by a remeshed one).
-pub const FORMAT_VERSION: u32 = 30;
+/// 29: the report says why a large face's edge-collapse copy was replaced by a remeshed one;
+/// 30: closed mouths and eyes cut open; 31: the jaw carries the skin down to its lower border and
+/// the neck stays, [`face_prep::jaw::Jaw::carried`]).
+pub const FORMAT_VERSION: u32 = 31;
 /// Size of the fixed header in bytes.
 pub const HEADER_LEN: usize = 8 + 4 + 32 + 32 + 8 + 32;
 

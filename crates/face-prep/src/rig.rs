@@ -517,8 +517,9 @@ impl FaceRig {
 
     /// Vertices whose displacement in response `muscle_index` is known exactly rather than
     /// averaged from their elements, with that displacement at slider = +1 (canonical frame):
-    /// for a jaw mode, every vertex of the jaw segment moves rigidly (so the jaw's part of the
-    /// outer contour moves with the jaw); empty for every other control.
+    /// for a jaw mode, every vertex of the jaw segment moves as the mandible carries it (so the
+    /// jaw's part of the outer contour moves with the jaw, and the neck's stays); empty for
+    /// every other control.
     pub fn prescribed_vertex_motion(&self, muscle_index: usize) -> Vec<(u32, DVec3)> {
         dispatch::prescribed_vertex_motion(self.parts(), muscle_index)
     }

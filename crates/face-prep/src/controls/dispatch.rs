@@ -117,8 +117,9 @@ pub(crate) fn control_pattern(rig: RigParts<'_>, muscle: &Muscle) -> Vec<(u32, D
 }
 
 /// Per-element displacement of a jaw mode at slider = +1 (the negative of its activation):
-/// the jaw segment rigidly, every band element of the other controls with the jaw's motion
-/// times [`Jaw::tissue_weight`] (elements of no band keep 0 there).
+/// the jaw segment as the mandible carries it ([`Jaw::carried_activation`]: rigidly above the
+/// still neck), every band element of the other controls with that motion times
+/// [`Jaw::tissue_weight`] (elements of no band keep 0 there).
 fn jaw_pattern(rig: RigParts<'_>, mode: JawMode) -> Vec<(u32, DVec3)> {
     let jaw = Jaw::of(rig.shell, rig.loops, rig.boxes, rig.mm_per_unit);
     let mm = rig.mm_per_unit;
@@ -132,12 +133,12 @@ fn jaw_pattern(rig: RigParts<'_>, mode: JawMode) -> Vec<(u32, DVec3)> {
         for e in m.elements() {
             let c = rig.shell.centroid(e as usize);
             let w = jaw.tissue_weight(c.truncate());
-            out.insert(e, -w * jaw.activation(mode, c, mm));
+            out.insert(e, -w * jaw.carried_activation(mode, c, mm));
         }
     }
     for &e in &jaw.elements {
         let c = rig.shell.centroid(e as usize);
-        out.insert(e, -jaw.activation(mode, c, mm));
+        out.insert(e, -jaw.carried_activation(mode, c, mm));
     }
     // The lower teeth move with the jaw: the deep layer sliding on them follows it along
     // their normal (the solve keeps only that part on a sliding element).
@@ -152,8 +153,9 @@ fn jaw_pattern(rig: RigParts<'_>, mode: JawMode) -> Vec<(u32, DVec3)> {
 
 /// Vertices whose displacement in response `muscle_index` is known exactly rather than
 /// averaged from their elements, with that displacement at slider = +1 (canonical frame):
-/// for a jaw mode, every vertex of the jaw segment moves rigidly (so the jaw's part of the
-/// outer contour moves with the jaw); empty for every other control.
+/// for a jaw mode, every vertex of the jaw segment moves as the mandible carries it (so the
+/// jaw's part of the outer contour moves with the jaw, and the neck's stays); empty for every
+/// other control.
 pub(crate) fn prescribed_vertex_motion(
     rig: RigParts<'_>,
     muscle_index: usize,
@@ -180,7 +182,7 @@ pub(crate) fn prescribed_vertex_motion(
         .into_iter()
         .map(|v| {
             let p = rig.shell.vertices[v as usize];
-            (v, -jaw.activation(mode, p, mm))
+            (v, -jaw.carried_activation(mode, p, mm))
         })
         .collect()
 }
