@@ -66,8 +66,20 @@ pub fn chains(mesh: &face_prep::FaceMesh, lp: &[u32]) -> Chains {
 /// first and last pair (a vertex next to both sides there would otherwise be pinched off), the
 /// triangles that collapse dropped, the unused positions dropped.
 pub fn welded_raw(mesh: &face_prep::FaceMesh, welded: &[&[u32]]) -> (Vec<DVec3>, Vec<[u32; 3]>) {
+    closed_raw(mesh, welded, false)
+}
+
+/// `mesh` with the loops `welded` closed as [`welded_raw`] does; with `own_lower`, each lower
+/// vertex keeps its own `v` line at its partner's position (the triangles that collapse in the
+/// weld are dropped all the same).
+pub fn closed_raw(
+    mesh: &face_prep::FaceMesh,
+    welded: &[&[u32]],
+    own_lower: bool,
+) -> (Vec<DVec3>, Vec<[u32; 3]>) {
     let mut v = mesh.vertices.clone();
     let mut replace: Vec<u32> = (0..v.len() as u32).collect();
+    let mut kept = replace.clone();
     for lp in welded {
         let c = chains(mesh, lp);
         assert_eq!(c.upper.len(), c.lower.len());
@@ -77,14 +89,22 @@ pub fn welded_raw(mesh: &face_prep::FaceMesh, welded: &[&[u32]]) -> (Vec<DVec3>,
             v[l as usize] = mid;
             replace[l as usize] = u;
         }
-        replace[c.corners[0] as usize] = c.upper[0];
-        replace[c.corners[1] as usize] = c.upper[c.upper.len() - 1];
+        for (corner, end) in [(0, c.upper[0]), (1, c.upper[c.upper.len() - 1])] {
+            replace[c.corners[corner] as usize] = end;
+            kept[c.corners[corner] as usize] = end;
+        }
+    }
+    if !own_lower {
+        kept = replace.clone();
     }
     let triangles: Vec<[u32; 3]> = mesh
         .triangles
         .iter()
-        .map(|t| t.map(|i| replace[i as usize]))
-        .filter(|t| t[0] != t[1] && t[1] != t[2] && t[0] != t[2])
+        .filter(|t| {
+            let t = t.map(|i| replace[i as usize]);
+            t[0] != t[1] && t[1] != t[2] && t[0] != t[2]
+        })
+        .map(|t| t.map(|i| kept[i as usize]))
         .collect();
     let mut index = vec![u32::MAX; v.len()];
     let mut positions = Vec::new();
@@ -107,6 +127,13 @@ pub fn welded_raw(mesh: &face_prep::FaceMesh, welded: &[&[u32]]) -> (Vec<DVec3>,
 pub fn slit_raw(mesh: &face_prep::FaceMesh) -> (Vec<DVec3>, Vec<[u32; 3]>) {
     let (mouth, _) = mouth_and_eyes(mesh);
     welded_raw(mesh, &[&mouth])
+}
+
+/// Face (c') as written: face (b) with the lower lip's own `v` lines, at exactly the upper
+/// lip's positions (see the module docs).
+pub fn coincident_raw(mesh: &face_prep::FaceMesh) -> (Vec<DVec3>, Vec<[u32; 3]>) {
+    let (mouth, _) = mouth_and_eyes(mesh);
+    closed_raw(mesh, &[&mouth], true)
 }
 
 /// Face (d) as written: both eyes' lids welded along their lid lines (see the module docs).

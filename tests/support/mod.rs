@@ -221,3 +221,71 @@ pub fn named_field(m: &facebem::FaceModel, name: &str) -> Vec<glam::DVec3> {
         .map(|(p, v)| *p - *v)
         .collect()
 }
+
+/// `mesh` with interior edges flipped at random (seeded): each triangle at most once, only
+/// where both new triangles face the old ones' way — a quad mesh split along other
+/// diagonals. The vertices stay where they are, so the shape changes only by how far the
+/// flipped quads are from planar.
+pub fn retriangulated(mesh: &face_prep::FaceMesh, seed: u64) -> face_prep::FaceMesh {
+    let mut state = seed
+        .wrapping_mul(6364136223846793005)
+        .wrapping_add(1442695040888963407);
+    let mut next = move || {
+        state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (state >> 33) as u32
+    };
+    let mut triangles = mesh.triangles.clone();
+    let mut edges: std::collections::BTreeMap<(u32, u32), Vec<usize>> = Default::default();
+    for (t, tri) in triangles.iter().enumerate() {
+        for k in 0..3 {
+            let (a, b) = (tri[k], tri[(k + 1) % 3]);
+            edges.entry((a.min(b), a.max(b))).or_default().push(t);
+        }
+    }
+    let mut interior: Vec<(u32, u32)> = edges
+        .iter()
+        .filter(|(_, ts)| ts.len() == 2)
+        .map(|(&e, _)| e)
+        .collect();
+    for i in (1..interior.len()).rev() {
+        interior.swap(i, next() as usize % (i + 1));
+    }
+    let normal = |v: &[glam::DVec3], t: [u32; 3]| {
+        (v[t[1] as usize] - v[t[0] as usize]).cross(v[t[2] as usize] - v[t[0] as usize])
+    };
+    let mut used = vec![false; triangles.len()];
+    for (a, b) in interior {
+        let [t1, t2] = [edges[&(a, b)][0], edges[&(a, b)][1]];
+        if used[t1] || used[t2] || next() % 2 == 0 {
+            continue;
+        }
+        let (p, q) = (triangles[t1], triangles[t2]);
+        let c = p.into_iter().find(|&v| v != a && v != b).unwrap();
+        let d = q.into_iter().find(|&v| v != a && v != b).unwrap();
+        if edges.contains_key(&(c.min(d), c.max(d))) {
+            continue;
+        }
+        let i = p.iter().position(|&v| v == c).unwrap();
+        let (x, y) = (p[(i + 1) % 3], p[(i + 2) % 3]);
+        let (n1, n2) = ([c, x, d], [c, d, y]);
+        let old = [normal(&mesh.vertices, p), normal(&mesh.vertices, q)];
+        let new = [normal(&mesh.vertices, n1), normal(&mesh.vertices, n2)];
+        if old.iter().any(|o| new.iter().any(|n| o.dot(*n) <= 0.0)) {
+            continue;
+        }
+        triangles[t1] = n1;
+        triangles[t2] = n2;
+        used[t1] = true;
+        used[t2] = true;
+        edges.insert((c.min(d), c.max(d)), vec![t1, t2]);
+    }
+    face_prep::FaceMesh {
+        vertices: mesh.vertices.clone(),
+        triangles,
+        input_to_vertex: mesh.input_to_vertex.clone(),
+        lip_line: None,
+        lid_lines: Vec::new(),
+    }
+}
