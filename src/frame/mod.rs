@@ -71,6 +71,24 @@ pub struct CanonicalFace {
 }
 
 impl CanonicalFace {
+    /// `mesh`'s loops with its vertices in the canonical frame `canonical_from_input` (a rig's,
+    /// which may differ from the mesh's own); `None` when the mesh has no face's four loops.
+    ///
+    /// ```
+    /// let mesh = facebem::input::default_face()?;
+    /// let frame = facebem::frame::InputFrame::find(&mesh)?;
+    /// let face = facebem::frame::CanonicalFace::of_mesh(&mesh, frame.canonical_from_input).unwrap();
+    /// assert_eq!(face.points, frame.canonical_points(&mesh));
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn of_mesh(mesh: &FaceMesh, canonical_from_input: DAffine3) -> Option<CanonicalFace> {
+        let frame = InputFrame::find(mesh).ok()?;
+        Some(CanonicalFace {
+            loops: frame.loops,
+            points: transformed(canonical_from_input, &mesh.vertices),
+        })
+    }
+
     /// The mouth corners of the input mesh ([`mouth_corners`] of its mouth loop).
     pub fn mouth_corners(&self) -> Option<(u32, u32)> {
         mouth_corners(&self.points, &self.loops.mouth)

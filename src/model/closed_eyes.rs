@@ -3,9 +3,9 @@
 //! no area in the front plane; an open eye's loop has an area of 3 % of its width squared or
 //! more.
 
+use crate::frame::CanonicalFace;
 use face_prep::FaceMesh;
-use face_prep::orient::canonical_frame;
-use glam::{DAffine3, DVec3};
+use glam::DAffine3;
 
 /// An eye counts as closed when its loop's area in the front plane (the rig's canonical x-y) is
 /// below this fraction of the square of the loop's width (its x extent). Measured on the
@@ -27,16 +27,10 @@ pub const CLOSED_EYE_AREA_FRACTION: f64 = 0.005;
 /// assert!(left > facebem::model::CLOSED_EYE_AREA_FRACTION && (left - right).abs() < 1e-9);
 /// ```
 pub fn eye_openings(mesh: &FaceMesh, canonical_from_input: DAffine3) -> Option<[f64; 2]> {
-    let loops = face_prep::topology::validate(&mesh.vertices, &mesh.triangles).ok()?;
-    if loops.len() != 4 {
-        return None;
-    }
-    let (_, loops) = canonical_frame(&mesh.vertices, &mesh.triangles, &loops).ok()?;
-    let canonical: Vec<DVec3> = mesh
-        .vertices
-        .iter()
-        .map(|&p| canonical_from_input.transform_point3(p))
-        .collect();
+    let CanonicalFace {
+        loops,
+        points: canonical,
+    } = CanonicalFace::of_mesh(mesh, canonical_from_input)?;
     let opening = |lp: &[u32]| {
         let area = 0.5
             * (0..lp.len())

@@ -4,7 +4,7 @@
 //! `calibrate` example and the contact sheet.
 
 use face_prep::FaceMesh;
-use face_prep::orient::{FaceLoops, canonical_frame, loop_centroid};
+use face_prep::orient::{FaceLoops, loop_centroid};
 use glam::{DAffine3, DVec2, DVec3};
 
 use crate::FaceModel;
@@ -161,16 +161,8 @@ impl FaceLandmarks {
         canonical_from_input: DAffine3,
         mm_per_unit: f64,
     ) -> Option<FaceLandmarks> {
-        let loops = face_prep::topology::validate(&mesh.vertices, &mesh.triangles).ok()?;
-        if loops.len() != 4 {
-            return None;
-        }
-        let (_, loops) = canonical_frame(&mesh.vertices, &mesh.triangles, &loops).ok()?;
-        let c: Vec<DVec3> = mesh
-            .vertices
-            .iter()
-            .map(|&p| canonical_from_input.transform_point3(p))
-            .collect();
+        let crate::frame::CanonicalFace { loops, points: c } =
+            crate::frame::CanonicalFace::of_mesh(mesh, canonical_from_input)?;
         let (mouth_corner_l, mouth_corner_r) = crate::frame::mouth_corners(&c, &loops.mouth)?;
         let eye_l = loop_centroid(&c, &loops.eye_l);
         let eye_r = loop_centroid(&c, &loops.eye_r);

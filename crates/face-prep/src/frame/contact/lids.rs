@@ -11,7 +11,7 @@
 //! ([`LID_TRACE`]), within [`MAX_HALF_LENGTH_IOD`] of the seed and never across the centre
 //! line; the line holding the most valley is the lids' line.
 
-use super::{ContactLine, Opened, Surface, TraceRule, cut};
+use super::{Opened, Surface, TraceRule};
 use crate::error::PrepError;
 use crate::frame::orient::{loop_centroid, loop_perimeter};
 use glam::DVec3;
@@ -121,9 +121,6 @@ pub fn open_closed_eyes(
     let surface = Surface::new(vertices, triangles, loops);
     let above = |x: DVec3| (x - mouth_c).dot(up);
     let out = |x: DVec3| (x - mouth_c).dot(across);
-    let mut lids: Vec<ContactLine> = Vec::new();
-    let mut out_vertices = vertices.to_vec();
-    let mut out_triangles = triangles.to_vec();
     let mut lines = Vec::new();
     for (side, name) in [(-1.0, "one"), (1.0, "the other")] {
         let seeds = surface.sharpest_edges(
@@ -179,13 +176,5 @@ pub fn open_closed_eyes(
     if lines[0].iter().any(|v| lines[1].contains(v)) {
         return Err(no_eyes("the two lid lines found meet".into()));
     }
-    for line in &lines {
-        lids.push(cut(&mut out_vertices, &mut out_triangles, line, -up));
-    }
-    Ok(Opened {
-        vertices: out_vertices,
-        triangles: out_triangles,
-        lips: None,
-        lids,
-    })
+    Ok(Opened::cut_along(vertices, triangles, &lines, -up, false))
 }

@@ -89,6 +89,36 @@ pub struct Opened {
     pub lids: Vec<ContactLine>,
 }
 
+impl Opened {
+    /// `vertices` and `triangles` cut open along each of `lines` (lower side toward `down`, see
+    /// [`cut`]), the lines' sides in `lips` when `are_lips`, in `lids` otherwise.
+    fn cut_along(
+        vertices: &[DVec3],
+        triangles: &[[u32; 3]],
+        lines: &[Vec<u32>],
+        down: DVec3,
+        are_lips: bool,
+    ) -> Opened {
+        let mut vertices = vertices.to_vec();
+        let mut triangles = triangles.to_vec();
+        let mut sides: Vec<ContactLine> = lines
+            .iter()
+            .map(|line| cut(&mut vertices, &mut triangles, line, down))
+            .collect();
+        let (lips, lids) = if are_lips {
+            (sides.pop(), Vec::new())
+        } else {
+            (None, std::mem::take(&mut sides))
+        };
+        Opened {
+            vertices,
+            triangles,
+            lips,
+            lids,
+        }
+    }
+}
+
 /// Opens what came closed: with two loops (the contour and an open mouth) both eyes' lid lines
 /// ([`lids`]), with three (the contour and the eyes) the lips' line ([`mouth`]). `Ok(None)` for
 /// four loops (nothing to open) and for counts this does not handle (then the caller's loop

@@ -8,7 +8,7 @@
 //! centre line, and the line is traced from it to both corners, no further than
 //! [`MAX_HALF_WIDTH_IOD`] from the centre line, and must span [`MIN_WIDTH_IOD`].
 
-use super::{ContactLine, MIN_SEED_FOLD_RAD, Opened, Surface, TraceRule, cut};
+use super::{MIN_SEED_FOLD_RAD, Opened, Surface, TraceRule};
 use crate::error::PrepError;
 use crate::frame::orient::{loop_centroid, loop_perimeter};
 use glam::DVec3;
@@ -148,13 +148,11 @@ pub fn open_closed_mouth(
             MIN_WIDTH_IOD
         )));
     }
-    let mut out_vertices = vertices.to_vec();
-    let mut out_triangles = triangles.to_vec();
-    let lips: ContactLine = cut(&mut out_vertices, &mut out_triangles, &line, frame.down);
-    Ok(Opened {
-        vertices: out_vertices,
-        triangles: out_triangles,
-        lips: Some(lips),
-        lids: Vec::new(),
-    })
+    Ok(Opened::cut_along(
+        vertices,
+        triangles,
+        &[line],
+        frame.down,
+        true,
+    ))
 }
