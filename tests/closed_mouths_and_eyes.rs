@@ -12,6 +12,9 @@
 //!   upper lip's positions: on load the weld makes it face (b), and the export gives each lip its
 //!   own lines back.
 //!
+//! - **(e) mouth bag**: the mouth loop carried back in four rings and closed behind (see
+//!   [`closed_common::bag_raw`]). Three boundary loops: the mouth opens into a closed pouch.
+//!
 //! - **(d) closed eyes**: each eye loop (sixteen vertices: two corners and seven on each lid)
 //!   welded the same way as (b). Two boundary loops: the contour and the mouth.
 //!
@@ -176,6 +179,64 @@ fn coincident_lips_load_as_a_slit_and_export_as_written() {
         }
     }
     assert_eq!(pairs, 9);
+}
+
+/// Face (e): the bag is found and taken off, the face rigs as an open mouth (the jaw drops the
+/// lower lip 25–45 mm, pucker narrows the mouth ≥ 20 % with no triangle turned over outside the
+/// lips, no target moves a vertex > 60 mm), and the export keeps every `v` line, the bag's
+/// following the lips: under the lower lip's middle it drops with the jaw, under the upper
+/// lip's it stays.
+#[test]
+fn a_mouth_bag_is_taken_off_and_follows_the_lips() {
+    let face = mediapipe();
+    let ((positions, triangles), lp) = bag_raw(&face);
+    let written = face_prep::FaceMesh {
+        vertices: positions.clone(),
+        triangles: triangles.clone(),
+        input_to_vertex: Vec::new(),
+        lip_line: None,
+        lid_lines: Vec::new(),
+    };
+    assert_eq!(loops_of(&written).len(), 3);
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("bag.obj");
+    std::fs::write(&path, obj_text(&positions, &triangles)).unwrap();
+    let (mesh, obj_source) = facebem::input::read_face(&path).unwrap();
+    assert_eq!(loops_of(&mesh).len(), 4);
+    let taken = positions.len() - mesh.vertices.len();
+    let mut m = build(&mesh);
+    m.obj_source = obj_source;
+    let f = figures(&m);
+    eprintln!("mouth bag: {taken} vertices taken off, {f:?}");
+    assert!(taken >= lp.len(), "{taken} vertices taken off");
+    assert!((25.0..=45.0).contains(&f.lower_lip_drop_mm), "{f:?}");
+    assert!(
+        f.pucker_width <= 0.8 && f.pucker_flips_outside_lips == 0,
+        "{f:?}"
+    );
+    assert!(f.largest_mm.0 <= 60.0, "{f:?}");
+    // Every line exported; the deepest ring follows its lip.
+    let layout = m.export_layout().unwrap();
+    assert_eq!(layout.len(), positions.len());
+    let jaw = field(&m, "jawOpen");
+    let lm = FaceLandmarks::of(&m).unwrap();
+    let deepest = face.vertices.len() + (BAG_RINGS - 1) * lp.len();
+    let ys: Vec<f64> = lp.iter().map(|&v| face.vertices[v as usize].y).collect();
+    let (lowest, highest) = (0..lp.len()).fold((0, 0), |(lo, hi), i| {
+        (
+            if ys[i] < ys[lo] { i } else { lo },
+            if ys[i] > ys[hi] { i } else { hi },
+        )
+    });
+    let motion = |i: usize| lm.canonical_mm(jaw[layout.welded[deepest + i].unwrap() as usize]);
+    let (under_lower, under_upper) = (motion(lowest), motion(highest));
+    eprintln!("mouth bag: deepest ring under the lower lip {under_lower}, upper {under_upper} mm");
+    assert!(under_lower.y < -15.0, "{under_lower}");
+    assert!(under_upper.length() < 5.0, "{under_upper}");
+    let glb = dir.path().join("bag.glb");
+    m.write_gltf(&glb, &facebem::export::GltfParams::default())
+        .unwrap();
+    support::assert_valid(&glb);
 }
 
 /// A face with eye openings and no mouth at all (a smooth sheet below the nose) is refused with

@@ -136,6 +136,58 @@ pub fn coincident_raw(mesh: &face_prep::FaceMesh) -> (Vec<DVec3>, Vec<[u32; 3]>)
     closed_raw(mesh, &[&mouth], true)
 }
 
+/// A face as written: positions and triangles.
+pub type RawFace = (Vec<DVec3>, Vec<[u32; 3]>);
+
+/// Rings of the mouth bag of face (e).
+pub const BAG_RINGS: usize = 4;
+
+/// Face (e) as written: MediaPipe with its mouth closed by a bag behind the lips. The mouth
+/// loop is carried back [`BAG_RINGS`] times, each ring 1 cm (0.16 iod) further back and 15 %
+/// narrower toward the loop's centroid, and the last ring is closed by a fan to a vertex
+/// behind it. The face's own lines come first, then the rings' (ring by ring, in loop order),
+/// then the fan's centre; the second value of the result is the loop in that order.
+pub fn bag_raw(mesh: &face_prep::FaceMesh) -> (RawFace, Vec<u32>) {
+    let (mut lp, _) = mouth_and_eyes(mesh);
+    // The bag's triangles run against the face's along the loop.
+    let forward = mesh
+        .triangles
+        .iter()
+        .any(|t| (0..3).any(|k| t[k] == lp[0] && t[(k + 1) % 3] == lp[1]));
+    if !forward {
+        lp.reverse();
+    }
+    let mut positions = mesh.vertices.clone();
+    let mut triangles = mesh.triangles.clone();
+    let centroid = lp.iter().map(|&v| positions[v as usize]).sum::<DVec3>() / lp.len() as f64;
+    let mut ring = lp.clone();
+    for k in 1..=BAG_RINGS {
+        let next: Vec<u32> = lp
+            .iter()
+            .map(|&v| {
+                let p = positions[v as usize];
+                positions.push(
+                    centroid + (p - centroid) * (1.0 - 0.15 * k as f64) - DVec3::Z * k as f64,
+                );
+                (positions.len() - 1) as u32
+            })
+            .collect();
+        for i in 0..lp.len() {
+            let j = (i + 1) % lp.len();
+            let (a, b, a1, b1) = (ring[i], ring[j], next[i], next[j]);
+            triangles.push([b, a, a1]);
+            triangles.push([b, a1, b1]);
+        }
+        ring = next;
+    }
+    positions.push(centroid - DVec3::Z * (BAG_RINGS as f64 + 0.5));
+    let centre = (positions.len() - 1) as u32;
+    for i in 0..lp.len() {
+        triangles.push([ring[(i + 1) % lp.len()], ring[i], centre]);
+    }
+    ((positions, triangles), lp)
+}
+
 /// Face (d) as written: both eyes' lids welded along their lid lines (see the module docs).
 pub fn closed_eyes_raw(mesh: &face_prep::FaceMesh) -> (Vec<DVec3>, Vec<[u32; 3]>) {
     let (_, [e1, e2]) = mouth_and_eyes(mesh);

@@ -26,7 +26,8 @@ pub struct FaceMesh {
     /// Exports use this to write poses in the user's own vertex order. An input position on a
     /// closed mouth's (eye's) contact line maps to the upper lip's (lid's) vertex; which side a
     /// face corner there belongs to follows from [`FaceMesh::triangles`] (see
-    /// [`FaceMesh::lip_line`]).
+    /// [`FaceMesh::lip_line`]). An input position of a mouth bag that was taken off
+    /// ([`crate::frame::contact::bag`]) maps to the entrance vertex it follows.
     pub input_to_vertex: Vec<Option<u32>>,
     /// The lips' contact line when the mouth came closed (three loops: the lips share vertices
     /// or touch at coincident ones) and was cut open ([`crate::frame::contact`]): the lower
@@ -230,10 +231,12 @@ impl FaceMesh {
             },
             other => other,
         })?;
+        let mut input_to_vertex = input_to_vertex;
         let (vertices, triangles, loops, lip_line, lid_lines) =
             match contact::open_closed_features(&vertices, &triangles, &loops)? {
                 None => (vertices, triangles, loops, None, Vec::new()),
-                Some(opened) => {
+                Some(mut opened) => {
+                    drop_followers(&mut opened, &mut input_to_vertex);
                     let loops = topology::validate(&opened.vertices, &opened.triangles)?;
                     let (v, t) = (opened.vertices, opened.triangles);
                     (v, t, loops, opened.lips, opened.lids)
@@ -579,4 +582,43 @@ impl LoadOptions {
             }),
         }
     }
+}
+
+/// Takes the vertices no triangle uses out of an opened face (a mouth bag taken off,
+/// [`contact::bag`]): the rest are renumbered in order, and the input lines of each follower
+/// go to the vertex it follows.
+fn drop_followers(opened: &mut contact::Opened, input_to_vertex: &mut [Option<u32>]) {
+    if opened.followers.is_empty() {
+        return;
+    }
+    let n = opened.vertices.len();
+    let mut used = vec![false; n];
+    for &v in opened.triangles.iter().flatten() {
+        used[v as usize] = true;
+    }
+    let mut index = vec![None; n];
+    let mut kept = Vec::new();
+    for v in 0..n {
+        if used[v] {
+            index[v] = Some(kept.len() as u32);
+            kept.push(opened.vertices[v]);
+        }
+    }
+    for &(follower, anchor) in &opened.followers {
+        index[follower as usize] = index[anchor as usize];
+    }
+    let renumber = |v: u32| index[v as usize].unwrap_or(v);
+    for t in &mut opened.triangles {
+        *t = t.map(renumber);
+    }
+    for line in opened.lips.iter_mut().chain(&mut opened.lids) {
+        for v in line.upper.iter_mut().chain(&mut line.lower) {
+            *v = renumber(*v);
+        }
+    }
+    for v in input_to_vertex.iter_mut() {
+        *v = v.and_then(|v| index[v as usize]);
+    }
+    opened.vertices = kept;
+    opened.followers.clear();
 }

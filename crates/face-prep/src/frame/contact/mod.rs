@@ -27,7 +27,11 @@
 //! shared, as on an open mouth, so the cut face has the loop of an open mouth (eye) whose lips
 //! (lids) touch: a loop of zero width to within 2 µm. The rig treats it as such: the jaw moves
 //! the lower lip's copies and not the upper lip's vertices.
+//!
+//! A mouth that opens into a closed **mouth bag** also leaves three loops; it is looked for
+//! first, as a pit of the depth field, and taken off at its rim ([`bag`]).
 
+pub mod bag;
 pub mod lids;
 pub mod mouth;
 
@@ -87,6 +91,9 @@ pub struct Opened {
     pub lips: Option<ContactLine>,
     /// The lids' lines, when the eyes were closed.
     pub lids: Vec<ContactLine>,
+    /// Vertices no triangle uses any more (a mouth bag taken off, [`bag`]), each with the
+    /// vertex it follows.
+    pub followers: Vec<(u32, u32)>,
 }
 
 impl Opened {
@@ -115,12 +122,14 @@ impl Opened {
             triangles,
             lips,
             lids,
+            followers: Vec::new(),
         }
     }
 }
 
 /// Opens what came closed: with two loops (the contour and an open mouth) both eyes' lid lines
-/// ([`lids`]), with three (the contour and the eyes) the lips' line ([`mouth`]). `Ok(None)` for
+/// ([`lids`]), with three (the contour and the eyes) a mouth bag ([`bag`]) or else the lips'
+/// line ([`mouth`]). `Ok(None)` for
 /// four loops (nothing to open) and for counts this does not handle (then the caller's loop
 /// count error stands).
 ///
@@ -138,7 +147,14 @@ pub fn open_closed_features(
 ) -> Result<Option<Opened>, PrepError> {
     match loops.len() {
         2 => lids::open_closed_eyes(vertices, triangles, loops).map(Some),
-        3 => mouth::open_closed_mouth(vertices, triangles, loops).map(Some),
+        3 => {
+            let bag = mouth::search_frame(vertices, triangles, loops)
+                .and_then(|frame| bag::cut_mouth_bag(vertices, triangles, loops, &frame));
+            match bag {
+                Some(opened) => Ok(Some(opened)),
+                None => mouth::open_closed_mouth(vertices, triangles, loops).map(Some),
+            }
+        }
         _ => Ok(None),
     }
 }

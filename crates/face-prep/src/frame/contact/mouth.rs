@@ -36,15 +36,26 @@ pub const LIP_TRACE: TraceRule = TraceRule {
 
 /// The face's frame for the search: eye midpoint, unit eye-line direction, unit "down" in the
 /// front plane, interocular distance, and how far below the eyes the nose tip is.
-struct SearchFrame {
-    eyes_mid: DVec3,
-    across: DVec3,
-    down: DVec3,
-    iod: f64,
+pub(super) struct SearchFrame {
+    pub(super) eyes_mid: DVec3,
+    pub(super) across: DVec3,
+    pub(super) down: DVec3,
+    pub(super) iod: f64,
     nose_below_eyes: f64,
 }
 
-fn search_frame(
+impl SearchFrame {
+    /// How far below the eye midpoint the mouth is looked for (along `down`):
+    /// [`MOUTH_BELOW_NOSE_IOD`] below the nose tip.
+    pub(super) fn mouth_window(&self) -> (f64, f64) {
+        (
+            self.nose_below_eyes + MOUTH_BELOW_NOSE_IOD.0 * self.iod,
+            self.nose_below_eyes + MOUTH_BELOW_NOSE_IOD.1 * self.iod,
+        )
+    }
+}
+
+pub(super) fn search_frame(
     vertices: &[DVec3],
     triangles: &[[u32; 3]],
     loops: &[Vec<u32>],
@@ -116,10 +127,7 @@ pub fn open_closed_mouth(
     let iod = frame.iod;
     let across_of = |x: DVec3| (x - frame.eyes_mid).dot(frame.across);
     let below_eyes = |x: DVec3| (x - frame.eyes_mid).dot(frame.down);
-    let (lo, hi) = (
-        frame.nose_below_eyes + MOUTH_BELOW_NOSE_IOD.0 * iod,
-        frame.nose_below_eyes + MOUTH_BELOW_NOSE_IOD.1 * iod,
-    );
+    let (lo, hi) = frame.mouth_window();
     let Some((seed_fold, a, b)) = surface.sharpest_edge(|m| {
         across_of(m).abs() <= SEED_HALF_WIDTH_IOD * iod && (lo..=hi).contains(&below_eyes(m))
     }) else {
