@@ -15,6 +15,9 @@
 //! - **(e) mouth bag**: the mouth loop carried back in four rings and closed behind (see
 //!   [`closed_common::bag_raw`]). Three boundary loops: the mouth opens into a closed pouch.
 //!
+//! - **(f) everything closed**: the lips and both eyes welded as (b) and (d). One boundary loop:
+//!   the contour.
+//!
 //! - **(d) closed eyes**: each eye loop (sixteen vertices: two corners and seven on each lid)
 //!   welded the same way as (b). Two boundary loops: the contour and the mouth.
 //!
@@ -494,4 +497,46 @@ fn every_test_face_read_from_its_glb_makes_the_same_expressions() {
         assert!(worst <= 0.02, "{name}: {target} {worst:.4}");
         assert!((0.9..=1.1).contains(&ratio), "{name}: ratio {ratio:.3}");
     }
+}
+
+/// Face (f): with the mouth and both eyes closed (one loop) the lips' line is found from the
+/// surface alone, then the lids' lines from the mouth: the mouth works as on (b), the eyes count
+/// as closed, and the whole is invariant to a rotation about a tilted axis with scale and shift.
+#[test]
+fn a_face_with_mouth_and_eyes_closed_is_opened() {
+    let face = mediapipe();
+    let raw = all_closed_raw(&face);
+    let written = face_prep::FaceMesh {
+        vertices: raw.0.clone(),
+        triangles: raw.1.clone(),
+        input_to_vertex: Vec::new(),
+        lip_line: None,
+        lid_lines: Vec::new(),
+    };
+    assert_eq!(loops_of(&written).len(), 1);
+    let mesh = face_prep::FaceMesh::from_triangles(&raw.0, &raw.1).unwrap();
+    assert_eq!(loops_of(&mesh).len(), 4);
+    let lips = mesh.lip_line.as_ref().expect("the lips' line is found");
+    assert_eq!(
+        (lips.upper.len(), mesh.lid_lines.len()),
+        (11, 2),
+        "{lips:?}"
+    );
+    let m = build(&mesh);
+    assert_mouth_works("everything closed", &figures(&m));
+    assert_eq!(
+        facebem::model::closed_eyes(&m.mesh, m.rig.canonical_from_input),
+        [true, true]
+    );
+    let rotated = DAffine3::from_scale_rotation_translation(
+        DVec3::splat(10.0),
+        DQuat::from_axis_angle(DVec3::new(0.3, -0.8, 0.5).normalize(), 30f64.to_radians()),
+        DVec3::new(1000.0, -1000.0, 1000.0),
+    );
+    let (worst, target, ratio) = invariance(&raw, rotated);
+    eprintln!(
+        "everything closed, rotated x10 moved: worst ARKit target {worst:.2e} ({target}), ratio {ratio:.4}"
+    );
+    assert!(worst <= 0.02, "{target} {worst:.4}");
+    assert!((0.9..=1.1).contains(&ratio), "ratio {ratio:.3}");
 }

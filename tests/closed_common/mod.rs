@@ -188,6 +188,12 @@ pub fn bag_raw(mesh: &face_prep::FaceMesh) -> (RawFace, Vec<u32>) {
     ((positions, triangles), lp)
 }
 
+/// Face (f) as written: the lips and both eyes' lids welded (one loop: the contour).
+pub fn all_closed_raw(mesh: &face_prep::FaceMesh) -> RawFace {
+    let (mouth, [e1, e2]) = mouth_and_eyes(mesh);
+    welded_raw(mesh, &[&mouth, &e1, &e2])
+}
+
 /// Face (d) as written: both eyes' lids welded along their lid lines (see the module docs).
 pub fn closed_eyes_raw(mesh: &face_prep::FaceMesh) -> (Vec<DVec3>, Vec<[u32; 3]>) {
     let (_, [e1, e2]) = mouth_and_eyes(mesh);

@@ -127,9 +127,10 @@ impl Opened {
     }
 }
 
-/// Opens what came closed: with two loops (the contour and an open mouth) both eyes' lid lines
-/// ([`lids`]), with three (the contour and the eyes) a mouth bag ([`bag`]) or else the lips'
-/// line ([`mouth`]). `Ok(None)` for
+/// Opens what came closed: with one loop (the contour) the lips' line found from the surface
+/// alone and then both eyes' lid lines, with two loops (the contour and an open mouth) both
+/// eyes' lid lines ([`lids`]), with three (the contour and the eyes) a mouth bag ([`bag`]) or
+/// else the lips' line ([`mouth`]). `Ok(None)` for
 /// four loops (nothing to open) and for counts this does not handle (then the caller's loop
 /// count error stands).
 ///
@@ -146,6 +147,9 @@ pub fn open_closed_features(
     loops: &[Vec<u32>],
 ) -> Result<Option<Opened>, PrepError> {
     match loops.len() {
+        // One loop: where no closed mouth and eyes are found, the loop count's error stands
+        // (a sheet with one loop need not be meant as a face).
+        1 => Ok(open_all_closed(vertices, triangles, loops)),
         2 => lids::open_closed_eyes(vertices, triangles, loops).map(Some),
         3 => {
             let bag = mouth::search_frame(vertices, triangles, loops)
@@ -157,6 +161,26 @@ pub fn open_closed_features(
         }
         _ => Ok(None),
     }
+}
+
+/// A face with one loop whose mouth and both eyes came closed, opened: the lips' line found
+/// from the surface alone ([`mouth::open_closed_mouth_without_eyes`]), then the lids' lines from
+/// the mouth; `None` when either is not found.
+fn open_all_closed(
+    vertices: &[DVec3],
+    triangles: &[[u32; 3]],
+    loops: &[Vec<u32>],
+) -> Option<Opened> {
+    let mouth = mouth::open_closed_mouth_without_eyes(vertices, triangles, loops).ok()?;
+    let loops = crate::topology::validate(&mouth.vertices, &mouth.triangles).ok()?;
+    if loops.len() != 2 {
+        return None;
+    }
+    let eyes = lids::open_closed_eyes(&mouth.vertices, &mouth.triangles, &loops).ok()?;
+    Some(Opened {
+        lips: mouth.lips,
+        ..eyes
+    })
 }
 
 /// The mesh's edges for the search: which triangle holds each directed edge, every vertex's

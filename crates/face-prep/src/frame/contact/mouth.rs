@@ -120,10 +120,23 @@ pub fn open_closed_mouth(
     triangles: &[[u32; 3]],
     loops: &[Vec<u32>],
 ) -> Result<Opened, PrepError> {
-    let no_mouth = |reason: String| PrepError::NoMouth { reason };
-    let frame = search_frame(vertices, triangles, loops)
-        .ok_or_else(|| no_mouth("the eyes and the front could not be placed".into()))?;
+    let frame = search_frame(vertices, triangles, loops).ok_or_else(|| PrepError::NoMouth {
+        reason: "the eyes and the front could not be placed".into(),
+    })?;
     let surface = Surface::new(vertices, triangles, loops);
+    let (line, _) = lips_line(&surface, &frame)?;
+    Ok(Opened::cut_along(
+        vertices,
+        triangles,
+        &[line],
+        frame.down,
+        true,
+    ))
+}
+
+/// The lips' contact line in `frame` and its seed's fold; an error naming what is missing.
+fn lips_line(surface: &Surface<'_>, frame: &SearchFrame) -> Result<(Vec<u32>, f64), PrepError> {
+    let no_mouth = |reason: String| PrepError::NoMouth { reason };
     let iod = frame.iod;
     let across_of = |x: DVec3| (x - frame.eyes_mid).dot(frame.across);
     let below_eyes = |x: DVec3| (x - frame.eyes_mid).dot(frame.down);
@@ -156,11 +169,93 @@ pub fn open_closed_mouth(
             MIN_WIDTH_IOD
         )));
     }
-    Ok(Opened::cut_along(
-        vertices,
-        triangles,
-        &[line],
-        frame.down,
-        true,
-    ))
+    Ok((line, seed_fold))
+}
+
+/// The face's width across its contour, in interocular distances: 2.2 on ICT's narrow face, 2.5
+/// on MediaPipe's (a face is 130–150 mm wide at the cheekbones, the pupils 60–65 mm apart).
+pub const CONTOUR_WIDTH_IOD: f64 = 2.3;
+
+/// Finds the lips' contact line of a face with one boundary loop (the contour: the mouth and
+/// both eyes closed) and cuts it open. With no eye to start from, the frame comes from the
+/// surface alone: the front is the area-weighted normal, the nose tip the front-most vertex,
+/// the interocular distance the contour's width over [`CONTOUR_WIDTH_IOD`], and down is tried
+/// along both principal axes of the contour in the front plane, both ways; the way whose lips'
+/// line has the sharpest seed wins.
+///
+/// ```
+/// use face_prep::frame::contact::mouth::open_closed_mouth_without_eyes;
+/// use face_prep::PrepError;
+/// use glam::DVec3;
+/// // A flat square has no folds: no lips that meet.
+/// let v = [DVec3::ZERO, DVec3::X, DVec3::new(1.0, 1.0, 0.0), DVec3::Y];
+/// let err = open_closed_mouth_without_eyes(&v, &[[0, 1, 2], [0, 2, 3]], &[vec![0, 1, 2, 3]]);
+/// assert!(matches!(err, Err(PrepError::NoMouth { .. })));
+/// ```
+pub fn open_closed_mouth_without_eyes(
+    vertices: &[DVec3],
+    triangles: &[[u32; 3]],
+    loops: &[Vec<u32>],
+) -> Result<Opened, PrepError> {
+    let no_mouth = |reason: &str| PrepError::NoMouth {
+        reason: reason.into(),
+    };
+    let contour = loops
+        .first()
+        .filter(|l| l.len() >= 3)
+        .ok_or_else(|| no_mouth("the face has no contour"))?;
+    let front = super::lids::area_normal(vertices, triangles)
+        .try_normalize()
+        .ok_or_else(|| no_mouth("the face has no front"))?;
+    let tip = *vertices
+        .iter()
+        .max_by(|a, b| a.dot(front).total_cmp(&b.dot(front)))
+        .ok_or_else(|| no_mouth("the face has no vertices"))?;
+    // The contour's principal axes in the front plane (2 x 2 covariance, closed form).
+    let centre = loop_centroid(vertices, contour);
+    let seed_axis = front.any_orthonormal_vector();
+    let other_axis = front.cross(seed_axis);
+    let (mut sxx, mut sxy, mut syy) = (0.0, 0.0, 0.0);
+    for &v in contour {
+        let r = vertices[v as usize] - centre;
+        let (x, y) = (r.dot(seed_axis), r.dot(other_axis));
+        sxx += x * x;
+        sxy += x * y;
+        syy += y * y;
+    }
+    let angle = 0.5 * (2.0 * sxy).atan2(sxx - syy);
+    let major = seed_axis * angle.cos() + other_axis * angle.sin();
+    let surface = Surface::new(vertices, triangles, loops);
+    let mut best: Option<(f64, Vec<u32>, DVec3)> = None;
+    let mut last_error = no_mouth("no lips' line on either side of the nose tip");
+    for down in [major, -major, front.cross(major), -front.cross(major)] {
+        let across = down.cross(front);
+        let (lo, hi) = contour
+            .iter()
+            .map(|&v| (vertices[v as usize] - centre).dot(across))
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
+                (a.min(x), b.max(x))
+            });
+        let iod = (hi - lo) / CONTOUR_WIDTH_IOD;
+        if !iod.is_finite() || iod <= 0.0 {
+            continue;
+        }
+        let frame = SearchFrame {
+            eyes_mid: tip,
+            across,
+            down,
+            iod,
+            nose_below_eyes: 0.0,
+        };
+        match lips_line(&surface, &frame) {
+            Ok((line, fold)) => {
+                if best.as_ref().is_none_or(|b| fold > b.0) {
+                    best = Some((fold, line, down));
+                }
+            }
+            Err(e) => last_error = e,
+        }
+    }
+    let (_, line, down) = best.ok_or(last_error)?;
+    Ok(Opened::cut_along(vertices, triangles, &[line], down, true))
 }
