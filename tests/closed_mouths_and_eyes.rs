@@ -236,6 +236,33 @@ fn a_mouth_bag_is_taken_off_and_follows_the_lips() {
     eprintln!("mouth bag: deepest ring under the lower lip {under_lower}, upper {under_upper} mm");
     assert!(under_lower.y < -15.0, "{under_lower}");
     assert!(under_upper.length() < 5.0, "{under_upper}");
+    // The pose OBJ moves each bag line with its lip from where it is drawn (not onto the lip).
+    let (sliders, _) = facebem::expressions::sliders_for_name("jawOpen", m.muscle_ids()).unwrap();
+    let pose = m.obj_text(&sliders).unwrap();
+    let posed: Vec<DVec3> = pose
+        .lines()
+        .filter(|l| l.starts_with("v "))
+        .map(|l| {
+            let x: Vec<f64> = l
+                .split_whitespace()
+                .skip(1)
+                .map(|t| t.parse().unwrap())
+                .collect();
+            DVec3::new(x[0], x[1], x[2])
+        })
+        .collect();
+    assert_eq!(posed.len(), positions.len());
+    for i in [lowest, highest] {
+        let line = deepest + i;
+        let anchor = layout.welded[line].unwrap() as usize;
+        let moved = posed[line] - positions[line];
+        assert!(
+            (moved - jaw[anchor]).length() < 1e-9,
+            "{moved} {}",
+            jaw[anchor]
+        );
+        assert!(positions[line].distance(m.mesh.vertices[anchor]) * lm.mm_per_unit > 20.0);
+    }
     let glb = dir.path().join("bag.glb");
     m.write_gltf(&glb, &facebem::export::GltfParams::default())
         .unwrap();

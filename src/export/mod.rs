@@ -7,6 +7,7 @@ pub mod gltf;
 pub mod layout;
 pub mod obj;
 
+use glam::DVec3;
 use std::path::Path;
 
 pub use gltf::{
@@ -61,9 +62,52 @@ impl crate::FaceModel {
     pub fn obj_text(&self, sliders: &[f64]) -> Result<String, ExportError> {
         let posed = self.basis.pose(sliders)?;
         Ok(match &self.obj_source {
-            Some(text) => obj::pose_from_template(text, &self.input_vertices(text)?, &posed)?,
+            Some(text) => self.pose_obj_text(text, &posed)?,
             None => obj::plain_obj(&posed, &self.basis.triangles)?,
         })
+    }
+
+    /// The face's OBJ text `text` with every `v` line moved as the vertex it takes moves from
+    /// the neutral to `posed` (the face mesh's vertices posed, its frame and units): each line
+    /// keeps its own position plus that motion (a line drawn exactly at its vertex gets the posed
+    /// position itself), so lines that follow another vertex (a mouth bag taken off the
+    /// simulated face, [`face_prep::frame::contact::bag`]) move with it and stay where they are
+    /// drawn. Unused lines are kept as written.
+    ///
+    /// ```no_run
+    /// let model = facebem::open::default_model().unwrap();
+    /// let text = model.obj_source.clone().unwrap();
+    /// let neutral = model.pose_obj_text(&text, &model.mesh.vertices).unwrap();
+    /// assert_eq!(neutral.lines().count(), text.lines().count());
+    /// ```
+    pub fn pose_obj_text(&self, text: &str, posed: &[DVec3]) -> Result<String, ExportError> {
+        let layout = ExportLayout::from_obj_for(text, &self.mesh)?;
+        let n = layout.input_count;
+        let mut lines = Vec::with_capacity(n);
+        let mut index = Vec::with_capacity(n);
+        for k in 0..n {
+            let own = layout.positions[k];
+            match layout.welded[k] {
+                Some(w) => {
+                    let (p, v) = posed
+                        .get(w as usize)
+                        .zip(self.mesh.vertices.get(w as usize))
+                        .ok_or(obj::ObjExportError::VertexOutOfRange {
+                            line: k + 1,
+                            vertex: w as usize,
+                            count: posed.len().min(self.mesh.vertices.len()),
+                        })?;
+                    // A line drawn at its vertex gets the posed position exactly.
+                    lines.push(if own == *v { *p } else { own + (*p - *v) });
+                    index.push(Some(k as u32));
+                }
+                None => {
+                    lines.push(own);
+                    index.push(None);
+                }
+            }
+        }
+        Ok(obj::pose_from_template(text, &index, &lines)?)
     }
 
     /// Per `v` line of the face's OBJ text `text`, the vertex of the face mesh its pose takes:

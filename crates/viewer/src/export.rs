@@ -103,11 +103,7 @@ pub fn write_export(kind: ExportKind, request: &ExportRequest) -> Result<PathBuf
                         obj_source: Some(obj),
                         ..
                     },
-                ) => facebem::export::obj::pose_from_template(
-                    obj,
-                    &model.input_vertices(obj)?,
-                    &posed,
-                )?,
+                ) => model.pose_obj_text(obj, &posed)?,
                 _ => facebem::export::obj::plain_obj(&posed, &request.basis.triangles)?,
             };
             facebem::write_atomic(&path, text.as_bytes())?;
