@@ -5,7 +5,7 @@ use crate::support;
 use facebem::expressions::{arkit, vrm};
 use facebem::report::measure::{FaceLandmarks, flipped_by};
 use facebem::{Control, FaceModel, PipelineParams, build_face_model};
-use glam::{DAffine3, DVec3};
+use glam::{DAffine3, DQuat, DVec3};
 
 /// A loop of `mesh` split at its corners (the loop's extreme vertices along the eye line, x
 /// here) into two chains running from one corner to the other, the upper one first.
@@ -192,6 +192,14 @@ pub fn bag_raw(mesh: &face_prep::FaceMesh) -> (RawFace, Vec<u32>) {
 pub fn all_closed_raw(mesh: &face_prep::FaceMesh) -> RawFace {
     let (mouth, [e1, e2]) = mouth_and_eyes(mesh);
     welded_raw(mesh, &[&mouth, &e1, &e2])
+}
+
+/// Face (g) as written: one eye's lids welded (the eye loop of larger x; three loops).
+pub fn one_eye_closed_raw(mesh: &face_prep::FaceMesh) -> RawFace {
+    let (_, [e1, e2]) = mouth_and_eyes(mesh);
+    let x = |l: &[u32]| l.iter().map(|&v| mesh.vertices[v as usize].x).sum::<f64>();
+    let eye = if x(&e1) > x(&e2) { e1 } else { e2 };
+    welded_raw(mesh, &[&eye])
 }
 
 /// Face (d) as written: both eyes' lids welded along their lid lines (see the module docs).
@@ -520,4 +528,25 @@ pub fn worst_arkit_target(
         }
     }
     worst
+}
+
+/// Rotation by 30° about a tilted axis, scale ×10 and a move by 1 000 units (issue 30, item 3).
+pub fn rotated_scaled_moved() -> DAffine3 {
+    DAffine3::from_scale_rotation_translation(
+        DVec3::splat(10.0),
+        DQuat::from_axis_angle(DVec3::new(0.3, -0.8, 0.5).normalize(), 30f64.to_radians()),
+        DVec3::new(1000.0, -1000.0, 1000.0),
+    )
+}
+
+/// Asserts that `raw` written as `input_from_original` (`how`) makes every ARKit target within
+/// 2 % RMS of its largest motion and the same near-singular ratio within 10 % ([`invariance`]).
+pub fn assert_invariant(name: &str, how: &str, raw: &RawFace, input_from_original: DAffine3) {
+    let (worst, target, ratio) = invariance(raw, input_from_original);
+    eprintln!("{name}, {how}: worst ARKit target {worst:.2e} ({target}), ratio {ratio:.4}");
+    assert!(worst <= 0.02, "{name}, {how}: {target} {worst:.4}");
+    assert!(
+        (0.9..=1.1).contains(&ratio),
+        "{name}, {how}: ratio {ratio:.3}"
+    );
 }

@@ -130,7 +130,8 @@ impl Opened {
 /// Opens what came closed: with one loop (the contour) the lips' line found from the surface
 /// alone and then both eyes' lid lines, with two loops (the contour and an open mouth) both
 /// eyes' lid lines ([`lids`]), with three (the contour and the eyes) a mouth bag ([`bag`]) or
-/// else the lips' line ([`mouth`]). `Ok(None)` for
+/// else the lips' line ([`mouth`]), or else, when the three are the contour, an open mouth and
+/// one open eye, the other eye's lid line ([`lids::open_one_closed_eye`]). `Ok(None)` for
 /// four loops (nothing to open) and for counts this does not handle (then the caller's loop
 /// count error stands).
 ///
@@ -154,9 +155,16 @@ pub fn open_closed_features(
         3 => {
             let bag = mouth::search_frame(vertices, triangles, loops)
                 .and_then(|frame| bag::cut_mouth_bag(vertices, triangles, loops, &frame));
-            match bag {
-                Some(opened) => Ok(Some(opened)),
-                None => mouth::open_closed_mouth(vertices, triangles, loops).map(Some),
+            if let Some(opened) = bag {
+                return Ok(Some(opened));
+            }
+            // Two small loops are the eyes and the mouth is closed, or else one of them is an
+            // open mouth and the other an open eye, and the other eye is closed.
+            match mouth::open_closed_mouth(vertices, triangles, loops) {
+                Ok(opened) => Ok(Some(opened)),
+                Err(no_mouth) => lids::open_one_closed_eye(vertices, triangles, loops)
+                    .map(Some)
+                    .ok_or(no_mouth),
             }
         }
         _ => Ok(None),
