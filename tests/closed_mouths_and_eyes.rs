@@ -434,7 +434,7 @@ fn touching_lids_count_as_closed_and_open_eyes_do_not() {
     }
 }
 
-/// Issue 30, item 3, on faces (b), (c) and (d): rotated 30° about a tilted axis, ×10 and moved by
+/// Issue 30, item 3, on faces (b), (c), (d) and (e): rotated 30° about a tilted axis, ×10 and moved by
 /// 1 000 units, renumbered; and ×0.001. Every ARKit target within 2 % RMS of its largest motion,
 /// the near-singular ratio within 10 %.
 #[test]
@@ -446,6 +446,7 @@ fn closed_mouths_are_invariant_to_how_the_file_is_written() {
         ("slit", slit_raw(&face)),
         ("touching", touching_raw(&face)),
         ("closed eyes", closed_eyes_raw(&face)),
+        ("mouth bag", bag_raw(&face).0),
     ] {
         for (how, t) in [("rotated x10 moved", rotated), ("x0.001", tiny)] {
             assert_invariant(name, how, &raw, t);
@@ -474,7 +475,8 @@ fn obj_against_glb(positions: &[DVec3], triangles: &[[u32; 3]]) -> (f64, &'stati
     assert!(glb_mesh.lip_line.is_none() && glb_mesh.lid_lines.is_empty());
     let other = build(&glb_mesh);
     let (mm_a, mm_b) = (base.rig.mm_per_unit(), other.rig.mm_per_unit());
-    assert!((mm_b / mm_a - 100.0).abs() < 1e-6, "{mm_a} {mm_b}");
+    // glTF is in metres.
+    assert!((mm_b - 1000.0).abs() < 1e-6, "{mm_a} {mm_b}");
     let of_base: Vec<usize> = base
         .mesh
         .vertices
@@ -493,8 +495,10 @@ fn obj_against_glb(positions: &[DVec3], triangles: &[[u32; 3]]) -> (f64, &'stati
     (worst, target, ratio)
 }
 
-/// Issue 30, item 3, OBJ against GLB on every test face made from MediaPipe: the bundled face,
-/// (a) re-triangulated, (b) slit, (c) touching lips, (d) closed eyes. Every ARKit target within
+/// Issue 30, item 3, OBJ against GLB on every test face made from MediaPipe: the bundled face
+/// and (a) re-triangulated to (g) one eye closed. (The other bundled faces are not held to it
+/// yet: ICT 2500, Lee Perry-Smith and ICT 13k differ by 5.3 %, 2.6 % and 7.7 %, see
+/// `docs/journal.md`.) Every ARKit target within
 /// 2 % RMS of its largest motion, the near-singular ratio within 10 %.
 #[test]
 fn every_test_face_read_from_its_glb_makes_the_same_expressions() {
@@ -509,6 +513,9 @@ fn every_test_face_read_from_its_glb_makes_the_same_expressions() {
         ("(b) slit", slit_raw(&face)),
         ("(c) touching lips", touching_raw(&face)),
         ("(d) closed eyes", closed_eyes_raw(&face)),
+        ("(e) mouth bag", bag_raw(&face).0),
+        ("(f) everything closed", all_closed_raw(&face)),
+        ("(g) one eye closed", one_eye_closed_raw(&face)),
     ] {
         let (worst, target, ratio) = obj_against_glb(&positions, &triangles);
         eprintln!(

@@ -249,6 +249,11 @@ pub fn export_gltf_layout(
     Ok(finish(b, root, params.format))
 }
 
+/// How far from the vertex it takes, as a fraction of the face's bounding-box diagonal, a line
+/// must be drawn to keep its own neutral position: a hundred times the separation of a cut
+/// line's two sides ([`face_prep::frame::contact::SEPARATION_REL`]).
+pub const FOLLOWER_REL: f64 = 100.0 * face_prep::frame::contact::SEPARATION_REL;
+
 /// Writes the neutral face's accessors (positions, normals, texture coordinates, indices);
 /// returns the primitive's `attributes` and its indices accessor.
 fn neutral_accessors(
@@ -258,11 +263,21 @@ fn neutral_accessors(
     neutral_normals: &[DVec3],
     scale: f64,
 ) -> Result<(Value, usize), GltfExportError> {
+    // A line drawn away from the vertex it takes (a mouth bag's line following its lip,
+    // `face_prep::frame::contact::bag`) keeps its own position; one at its vertex (to within
+    // the 2 µm of a cut line's sides) gets the vertex's.
+    let (lo, hi) = face_prep::topology::bounding_box(basis.neutral.iter().copied());
+    let own_beyond = FOLLOWER_REL * (hi - lo).length();
     let positions: Vec<DVec3> = layout
         .welded
         .iter()
         .zip(&layout.positions)
-        .map(|(w, p)| w.map_or(*p, |w| basis.neutral[w as usize]) * scale)
+        .map(|(w, p)| match w {
+            Some(w) if basis.neutral[*w as usize].distance(*p) <= own_beyond => {
+                basis.neutral[*w as usize] * scale
+            }
+            _ => *p * scale,
+        })
         .collect();
     let normals: Vec<DVec3> = (0..layout.len())
         .map(|j| {
