@@ -75,7 +75,7 @@ impl crate::FaceModel {
     /// drawn. Unused lines are kept as written.
     ///
     /// ```no_run
-    /// let model = facebem::open::default_model().unwrap();
+    /// let (model, _) = facebem::input::default_model(None, &facebem::Control::new()).unwrap();
     /// let text = model.obj_source.clone().unwrap();
     /// let neutral = model.pose_obj_text(&text, &model.mesh.vertices).unwrap();
     /// assert_eq!(neutral.lines().count(), text.lines().count());
