@@ -202,6 +202,7 @@ fn a_mouth_bag_is_taken_off_and_follows_the_lips() {
         input_to_vertex: Vec::new(),
         lip_line: None,
         lid_lines: Vec::new(),
+        mouth_bag_vertices: 0,
     };
     assert_eq!(loops_of(&written).len(), 3);
     let dir = tempfile::tempdir().unwrap();
@@ -215,6 +216,14 @@ fn a_mouth_bag_is_taken_off_and_follows_the_lips() {
     let f = figures(&m);
     eprintln!("mouth bag: {taken} vertices taken off, {f:?}");
     assert!(taken >= lp.len(), "{taken} vertices taken off");
+    assert_eq!(mesh.mouth_bag_vertices, taken);
+    let info = facebem::report::describe::describe("bag.obj".as_ref(), &mesh, &m.rig, Some(&m));
+    assert!(
+        info.contains(&format!(
+            "opens into a closed mouth bag; its {taken} vertices"
+        )),
+        "{info}"
+    );
     assert!((25.0..=45.0).contains(&f.lower_lip_drop_mm), "{f:?}");
     assert!(
         f.pucker_width <= 0.8 && f.pucker_flips_outside_lips == 0,
@@ -539,6 +548,7 @@ fn a_face_with_mouth_and_eyes_closed_is_opened() {
         input_to_vertex: Vec::new(),
         lip_line: None,
         lid_lines: Vec::new(),
+        mouth_bag_vertices: 0,
     };
     assert_eq!(loops_of(&written).len(), 1);
     let mesh = face_prep::FaceMesh::from_triangles(&raw.0, &raw.1).unwrap();

@@ -50,6 +50,14 @@ pub fn describe(path: &Path, mesh: &FaceMesh, rig: &FaceRig, model: Option<&Face
             line.lower.len()
         );
     }
+    if mesh.mouth_bag_vertices > 0 {
+        let _ = writeln!(
+            s,
+            "  mouth: opens into a closed mouth bag; its {} vertices are taken off the simulated \
+             face and each follows the lip vertex nearest along the bag",
+            mesh.mouth_bag_vertices
+        );
+    }
     let closed = crate::model::closed_eyes(mesh, rig.canonical_from_input);
     if closed.iter().any(|&c| c) || !mesh.lid_lines.is_empty() {
         let which = match closed {

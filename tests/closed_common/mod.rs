@@ -1,5 +1,6 @@
 //! Test faces with closed mouths and eyes, made from the bundled MediaPipe face, and what their
 //! targets do (`tests/closed_mouths_and_eyes.rs` describes the faces and the bounds).
+#![allow(dead_code)]
 
 use crate::support;
 use facebem::expressions::{arkit, vrm};

@@ -287,5 +287,6 @@ pub fn retriangulated(mesh: &face_prep::FaceMesh, seed: u64) -> face_prep::FaceM
         input_to_vertex: mesh.input_to_vertex.clone(),
         lip_line: None,
         lid_lines: Vec::new(),
+        mouth_bag_vertices: 0,
     }
 }

@@ -37,6 +37,10 @@ pub struct FaceMesh {
     /// lower lids' copies appended like the lips'. The rig's lid controls leave a closed eye
     /// alone.
     pub lid_lines: Vec<ContactLine>,
+    /// How many vertices of a closed mouth bag behind the lips were taken off the simulated
+    /// face ([`crate::frame::contact::bag`]); 0 when the mouth opens onto nothing.
+    #[serde(default)]
+    pub mouth_bag_vertices: usize,
 }
 
 /// A position must be finite and within [`MAX_COORDINATE`] of the origin.
@@ -232,14 +236,14 @@ impl FaceMesh {
             other => other,
         })?;
         let mut input_to_vertex = input_to_vertex;
-        let (vertices, triangles, loops, lip_line, lid_lines) =
+        let (vertices, triangles, loops, lip_line, lid_lines, mouth_bag_vertices) =
             match contact::open_closed_features(&vertices, &triangles, &loops)? {
-                None => (vertices, triangles, loops, None, Vec::new()),
+                None => (vertices, triangles, loops, None, Vec::new(), 0),
                 Some(mut opened) => {
-                    drop_followers(&mut opened, &mut input_to_vertex);
+                    let bag = drop_followers(&mut opened, &mut input_to_vertex);
                     let loops = topology::validate(&opened.vertices, &opened.triangles)?;
                     let (v, t) = (opened.vertices, opened.triangles);
-                    (v, t, loops, opened.lips, opened.lids)
+                    (v, t, loops, opened.lips, opened.lids, bag)
                 }
             };
         topology::check_four_loops(&vertices, &loops)?;
@@ -249,6 +253,7 @@ impl FaceMesh {
             input_to_vertex,
             lip_line,
             lid_lines,
+            mouth_bag_vertices,
         })
     }
 
@@ -586,10 +591,11 @@ impl LoadOptions {
 
 /// Takes the vertices no triangle uses out of an opened face (a mouth bag taken off,
 /// [`contact::bag`]): the rest are renumbered in order, and the input lines of each follower
-/// go to the vertex it follows.
-fn drop_followers(opened: &mut contact::Opened, input_to_vertex: &mut [Option<u32>]) {
-    if opened.followers.is_empty() {
-        return;
+/// go to the vertex it follows. Returns how many followers were taken out.
+fn drop_followers(opened: &mut contact::Opened, input_to_vertex: &mut [Option<u32>]) -> usize {
+    let followers = opened.followers.len();
+    if followers == 0 {
+        return 0;
     }
     let n = opened.vertices.len();
     let mut used = vec![false; n];
@@ -621,4 +627,5 @@ fn drop_followers(opened: &mut contact::Opened, input_to_vertex: &mut [Option<u3
     }
     opened.vertices = kept;
     opened.followers.clear();
+    followers
 }
