@@ -11,7 +11,8 @@ use glam::DVec3;
 use std::path::Path;
 
 pub use gltf::{
-    GltfExportError, GltfFormat, GltfParams, MATERIAL_NAME, export_gltf, export_gltf_layout,
+    ArkitNaming, GltfExportError, GltfFormat, GltfParams, MATERIAL_NAME, export_gltf,
+    export_gltf_layout,
 };
 pub use layout::{ExportLayout, LayoutError};
 pub use obj::ObjExportError;

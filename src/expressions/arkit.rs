@@ -12,6 +12,51 @@
 
 use super::{Definition, NameSet, NamedExpression};
 
+/// ARKit's raw blendshape location string of `name` (one of [`NAMES`], any ASCII case): the
+/// string `ARFaceAnchor.BlendShapeLocation` holds and that Live Link Face, Face Cap and many
+/// engines send, `_L` / `_R` for a side (`eyeBlink_L`, `mouthSmile_R`). The jaw's and the
+/// mouth's sideways moves are directions, not sides, and keep their names (`jawLeft`,
+/// `mouthRight`). `None` for a name that is not ARKit's.
+///
+/// ```
+/// use facebem::expressions::arkit::raw_name;
+/// assert_eq!(raw_name("eyeBlinkLeft").as_deref(), Some("eyeBlink_L"));
+/// assert_eq!(raw_name("mouthSmileRight").as_deref(), Some("mouthSmile_R"));
+/// assert_eq!(raw_name("jawLeft").as_deref(), Some("jawLeft"));
+/// assert_eq!(raw_name("browInnerUp").as_deref(), Some("browInnerUp"));
+/// assert_eq!(raw_name("happy"), None);
+/// ```
+pub fn raw_name(name: &str) -> Option<String> {
+    let name = NAMES.iter().find(|n| n.eq_ignore_ascii_case(name.trim()))?;
+    if matches!(*name, "jawLeft" | "jawRight" | "mouthLeft" | "mouthRight") {
+        return Some(name.to_string());
+    }
+    Some(if let Some(stem) = name.strip_suffix("Left") {
+        format!("{stem}_L")
+    } else if let Some(stem) = name.strip_suffix("Right") {
+        format!("{stem}_R")
+    } else {
+        name.to_string()
+    })
+}
+
+/// The ARKit name (as in [`NAMES`]) whose raw location string ([`raw_name`]) is `raw`, ignoring
+/// ASCII case and surrounding spaces.
+///
+/// ```
+/// use facebem::expressions::arkit::from_raw;
+/// assert_eq!(from_raw("eyeBlink_L"), Some("eyeBlinkLeft"));
+/// assert_eq!(from_raw(" MOUTHSMILE_R "), Some("mouthSmileRight"));
+/// assert_eq!(from_raw("eyeBlink_X"), None);
+/// ```
+pub fn from_raw(raw: &str) -> Option<&'static str> {
+    let raw = raw.trim();
+    NAMES
+        .iter()
+        .copied()
+        .find(|n| raw_name(n).is_some_and(|r| r.eq_ignore_ascii_case(raw)))
+}
+
 /// All 52 ARKit names in Apple's order (alphabetical, as `ARFaceAnchor.h` lists them).
 pub const NAMES: [&str; 52] = [
     "browDownLeft",

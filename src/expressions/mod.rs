@@ -255,10 +255,28 @@ pub fn of_set(set: NameSet) -> &'static [NamedExpression] {
 }
 
 /// Finds a named expression by its exact name, ignoring ASCII case and surrounding spaces
-/// (ARKit first: no name is in both standards).
+/// (ARKit first: no name is in both standards); ARKit's raw location strings (`eyeBlink_L`,
+/// [`arkit::raw_name`]) name their expressions too.
 pub fn find(name: &str) -> Option<&'static NamedExpression> {
-    let name = name.trim();
+    let name = arkit::from_raw(name).unwrap_or(name.trim());
     all().find(|e| e.name.eq_ignore_ascii_case(name))
+}
+
+/// The standard name and the reason when `name` (any ASCII case; ARKit's raw spelling too) is
+/// one facebem cannot make ([`NOT_MODELLED`]).
+///
+/// ```
+/// use facebem::expressions::not_modelled;
+/// assert_eq!(not_modelled("eyeLookUp_L"), Some(("eyeLookUpLeft", "no eyeballs")));
+/// assert_eq!(not_modelled("TONGUEOUT"), Some(("tongueOut", "no tongue")));
+/// assert_eq!(not_modelled("eyeBlinkLeft"), None);
+/// ```
+pub fn not_modelled(name: &str) -> Option<(&'static str, &'static str)> {
+    let name = arkit::from_raw(name).unwrap_or(name.trim());
+    NOT_MODELLED
+        .iter()
+        .copied()
+        .find(|(n, _)| n.eq_ignore_ascii_case(name))
 }
 
 /// Names of a standard facebem cannot make, with the reason.
@@ -361,6 +379,14 @@ pub enum LookupError {
     /// No facebem preset, ARKit name or VRM preset has this name.
     #[error("unknown preset or expression name {0:?}")]
     Unknown(String),
+    /// A standard name facebem cannot make ([`NOT_MODELLED`]).
+    #[error("{name} is not modelled: the face has {reason} (facebem moves the skin only)")]
+    NotModelled {
+        /// The standard's name.
+        name: &'static str,
+        /// Why ("no eyeballs", "no tongue").
+        reason: &'static str,
+    },
     /// The expression exists, but the rig has none of its controls.
     #[error("{name} needs controls this rig does not have: {}", missing.join(", "))]
     NoControls {
@@ -380,6 +406,9 @@ pub fn sliders_for_name(
 ) -> Result<(Vec<f64>, Vec<&'static str>), LookupError> {
     if let Some(p) = presets::find(name) {
         return Ok((p.sliders_for(control_ids), Vec::new()));
+    }
+    if let Some((name, reason)) = not_modelled(name) {
+        return Err(LookupError::NotModelled { name, reason });
     }
     let e = find(name).ok_or_else(|| LookupError::Unknown(name.trim().to_string()))?;
     let r = e

@@ -216,3 +216,90 @@ fn name_sets_parse() {
     assert!(NameSets::parse("arkit,,vrm").is_err());
     assert_eq!(NameSets::default(), NameSets::ALL);
 }
+
+/// ARKit's raw location strings (`ARFaceAnchor.BlendShapeLocation.rawValue`, what Live Link
+/// Face and Face Cap send), in the order of [`arkit::NAMES`].
+const RAW: [&str; 52] = [
+    "browDown_L",
+    "browDown_R",
+    "browInnerUp",
+    "browOuterUp_L",
+    "browOuterUp_R",
+    "cheekPuff",
+    "cheekSquint_L",
+    "cheekSquint_R",
+    "eyeBlink_L",
+    "eyeBlink_R",
+    "eyeLookDown_L",
+    "eyeLookDown_R",
+    "eyeLookIn_L",
+    "eyeLookIn_R",
+    "eyeLookOut_L",
+    "eyeLookOut_R",
+    "eyeLookUp_L",
+    "eyeLookUp_R",
+    "eyeSquint_L",
+    "eyeSquint_R",
+    "eyeWide_L",
+    "eyeWide_R",
+    "jawForward",
+    "jawLeft",
+    "jawOpen",
+    "jawRight",
+    "mouthClose",
+    "mouthDimple_L",
+    "mouthDimple_R",
+    "mouthFrown_L",
+    "mouthFrown_R",
+    "mouthFunnel",
+    "mouthLeft",
+    "mouthLowerDown_L",
+    "mouthLowerDown_R",
+    "mouthPress_L",
+    "mouthPress_R",
+    "mouthPucker",
+    "mouthRight",
+    "mouthRollLower",
+    "mouthRollUpper",
+    "mouthShrugLower",
+    "mouthShrugUpper",
+    "mouthSmile_L",
+    "mouthSmile_R",
+    "mouthStretch_L",
+    "mouthStretch_R",
+    "mouthUpperUp_L",
+    "mouthUpperUp_R",
+    "noseSneer_L",
+    "noseSneer_R",
+    "tongueOut",
+];
+
+/// Issue 34, item 5: every ARKit name has its raw spelling, and the raw spelling finds the same
+/// expression (or the same reason it is not modelled).
+#[test]
+fn arkit_raw_names_match_arkits_strings_and_find_the_same_expression() {
+    for (name, raw) in arkit::NAMES.iter().zip(RAW) {
+        assert_eq!(arkit::raw_name(name).as_deref(), Some(raw));
+        assert_eq!(arkit::from_raw(raw), Some(*name));
+        match find(name) {
+            Some(e) => assert!(std::ptr::eq(e, find(raw).unwrap()), "{raw}"),
+            None => {
+                assert!(find(raw).is_none(), "{raw}");
+                assert_eq!(not_modelled(raw), not_modelled(name));
+                assert!(not_modelled(raw).is_some(), "{raw}");
+            }
+        }
+    }
+    let ten = ids(&TEN);
+    assert_eq!(
+        sliders_for_name("eyeLookIn_R", &ten),
+        Err(LookupError::NotModelled {
+            name: "eyeLookInRight",
+            reason: "no eyeballs"
+        })
+    );
+    assert_eq!(
+        sliders_for_name("mouthSmile_L", &ten),
+        sliders_for_name("mouthSmileLeft", &ten)
+    );
+}

@@ -92,6 +92,11 @@ pub(crate) enum Command {
         /// comma-separated list. ARKit and VRM targets come first.
         #[arg(long, default_value = "all", value_parser = NameSets::parse)]
         names: NameSets,
+        /// How the ARKit targets are spelled: `arkit` (`eyeBlinkLeft`, as glTF and three.js
+        /// avatars name them) or `arkit-raw` (`eyeBlink_L`, ARKit's raw location strings, as
+        /// Live Link Face and Face Cap send them). `pose --preset` accepts both.
+        #[arg(long, default_value = "arkit", value_parser = facebem::export::ArkitNaming::parse)]
+        naming: facebem::export::ArkitNaming,
         /// Write it even when the rig is not trustworthy (a near-singular solve, a shell that
         /// crosses itself, a control that moves the skin past the documented limits); the
         /// causes are printed as warnings.
@@ -188,8 +193,13 @@ fn presets_help() -> String {
     }
     for set in [NameSet::Arkit, NameSet::Vrm] {
         let names: Vec<&str> = expressions::of_set(set).iter().map(|e| e.name).collect();
+        let raw = if set == NameSet::Arkit {
+            " and in ARKit's raw spelling, e.g. eyeBlink_L"
+        } else {
+            ""
+        };
         out.push_str(&format!(
-            "{} names (also accepted by --preset; defined in facebem::expressions):\n  {}\n",
+            "{} names (also accepted by --preset{raw}; defined in facebem::expressions):\n  {}\n",
             set.display_name(),
             names.join(" ")
         ));

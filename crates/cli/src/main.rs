@@ -123,8 +123,9 @@ fn run(cli: Cli) -> Result<()> {
             gltf,
             animation,
             names,
+            naming,
             force,
-        } => export(&rig, &gltf, animation, names, force),
+        } => export(&rig, &gltf, animation, names, naming, force),
         Command::Muscles { face, output } => muscles(&face, &output),
         Command::Sheet(args) => sheet(&args),
     }

@@ -36,6 +36,9 @@ pub(crate) fn pose(
         && presets::find(name).is_none()
         && expressions::find(name).is_none()
     {
+        if let Some((name, reason)) = expressions::not_modelled(name) {
+            bail!("{}", expressions::LookupError::NotModelled { name, reason });
+        }
         bail!(
             "unknown preset {name:?} (known: {}, or an ARKit or VRM 1.0 name, see --help)",
             presets::names().join(", ")
@@ -94,6 +97,7 @@ pub(crate) fn export(
     gltf: &Path,
     animation: bool,
     names: NameSets,
+    arkit_naming: facebem::export::ArkitNaming,
     force: bool,
 ) -> Result<()> {
     facebem::check_output(gltf, &[rig], &["glb", "gltf"], "a glTF export")?;
@@ -102,6 +106,7 @@ pub(crate) fn export(
     let params = facebem::export::GltfParams {
         animation,
         names,
+        arkit_naming,
         ..Default::default()
     };
     model.write_gltf(gltf, &params)?;

@@ -480,3 +480,86 @@ fn rig_copy_method_remesh_and_a_bad_method() {
         stderr(&bad)
     );
 }
+
+/// The JSON chunk of a GLB file.
+fn glb_json(path: &Path) -> serde_json::Value {
+    let bytes = std::fs::read(path).unwrap();
+    let len = u32::from_le_bytes(bytes[12..16].try_into().unwrap()) as usize;
+    serde_json::from_slice(&bytes[20..20 + len]).unwrap()
+}
+
+/// Issue 34, item 5: `export --naming arkit-raw` spells the ARKit targets as ARKit's raw
+/// location strings (`eyeBlink_L`), the validator accepts the file, and `pose --preset` takes
+/// that spelling for the same pose; a name the face cannot make says why in one line.
+#[test]
+fn arkit_raw_naming_round_trips_through_pose() {
+    let (dir, rig) = rigged();
+    let model = facebem::cache::load(rig).unwrap();
+    let glb = dir.path().join("raw.glb");
+    let out = facebem(&[
+        "export",
+        s(rig),
+        "--gltf",
+        s(&glb),
+        "--names",
+        "arkit",
+        "--naming",
+        "arkit-raw",
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    support::assert_valid(&glb);
+    let json = glb_json(&glb);
+    let names: Vec<String> = json["meshes"][0]["extras"]["targetNames"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|n| n.as_str().unwrap().to_string())
+        .collect();
+    let (made, _) = facebem::expressions::for_rig(
+        facebem::expressions::NameSets::parse("arkit").unwrap(),
+        model.muscle_ids(),
+    );
+    let expected: Vec<String> = made
+        .iter()
+        .map(|m| facebem::expressions::arkit::raw_name(m.expression.name).unwrap())
+        .collect();
+    assert_eq!(names, expected);
+    for raw in [
+        "eyeBlink_L",
+        "mouthSmile_R",
+        "jawOpen",
+        "jawLeft",
+        "browInnerUp",
+    ] {
+        assert!(names.iter().any(|n| n == raw), "{raw} not in {names:?}");
+    }
+    assert!(
+        !names
+            .iter()
+            .any(|n| n.ends_with("Left") && n != "jawLeft" && n != "mouthLeft")
+    );
+    // Both spellings pose the same.
+    let pose = |preset: &str| {
+        let obj = dir.path().join(format!("raw_{preset}.obj"));
+        let out = facebem(&["pose", s(rig), "--preset", preset, "-o", s(&obj)]);
+        assert!(out.status.success(), "{preset}: {}", stderr(&out));
+        std::fs::read_to_string(&obj).unwrap()
+    };
+    assert_eq!(pose("mouthSmile_L"), pose("mouthSmileLeft"));
+    assert_eq!(pose("eyeBlink_R"), pose("eyeBlinkRight"));
+    // Names the face cannot make, in either spelling.
+    for name in ["eyeLookUp_L", "eyeLookUpLeft", "tongueOut"] {
+        let out = facebem(&[
+            "pose",
+            s(rig),
+            "--preset",
+            name,
+            "-o",
+            s(&dir.path().join("none.obj")),
+        ]);
+        assert_one_line_error(&out, &["is not modelled", "the face has no"]);
+    }
+    let out = facebem(&["export", s(rig), "--gltf", s(&glb), "--naming", "apple"]);
+    assert!(!out.status.success());
+    assert!(stderr(&out).contains("unknown naming"), "{}", stderr(&out));
+}

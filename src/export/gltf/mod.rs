@@ -67,6 +67,50 @@ impl GltfFormat {
     }
 }
 
+/// How ARKit's morph targets are spelled ([`GltfParams::arkit_naming`]).
+///
+/// ```
+/// use facebem::export::ArkitNaming;
+/// assert_eq!(ArkitNaming::parse("arkit-raw"), Ok(ArkitNaming::Raw));
+/// assert_eq!(ArkitNaming::Raw.name("eyeBlinkLeft"), "eyeBlink_L");
+/// assert_eq!(ArkitNaming::Swift.name("eyeBlinkLeft"), "eyeBlinkLeft");
+/// assert!(ArkitNaming::parse("apple").is_err());
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum ArkitNaming {
+    /// `eyeBlinkLeft`: the Swift constants' spelling, which glTF and three.js avatars use
+    /// (`arkit`).
+    #[default]
+    Swift,
+    /// `eyeBlink_L`: ARKit's raw location strings, which Live Link Face, Face Cap and many
+    /// engines send (`arkit-raw`, [`crate::expressions::arkit::raw_name`]).
+    Raw,
+}
+
+impl ArkitNaming {
+    /// Parses `arkit` or `arkit-raw`.
+    pub fn parse(s: &str) -> Result<ArkitNaming, String> {
+        match s.trim() {
+            "arkit" => Ok(ArkitNaming::Swift),
+            "arkit-raw" => Ok(ArkitNaming::Raw),
+            other => Err(format!(
+                "unknown naming {other:?} (known: arkit, arkit-raw)"
+            )),
+        }
+    }
+
+    /// The spelling of ARKit's `name` (as in [`crate::expressions::arkit::NAMES`]); any other
+    /// name is returned as it is.
+    pub fn name(self, name: &str) -> String {
+        match self {
+            ArkitNaming::Swift => name.to_string(),
+            ArkitNaming::Raw => {
+                crate::expressions::arkit::raw_name(name).unwrap_or_else(|| name.to_string())
+            }
+        }
+    }
+}
+
 /// Options of a glTF export.
 #[derive(Clone, Debug, PartialEq)]
 pub struct GltfParams {
@@ -89,6 +133,8 @@ pub struct GltfParams {
     pub copyright: Option<String>,
     /// Extra `asset.extras` entries (licence, source header); the unit conversion is added.
     pub asset_extras: Map<String, Value>,
+    /// How the ARKit targets are spelled.
+    pub arkit_naming: ArkitNaming,
 }
 
 impl Default for GltfParams {
@@ -102,6 +148,7 @@ impl Default for GltfParams {
             metres_per_unit: 1.0,
             copyright: None,
             asset_extras: Map::new(),
+            arkit_naming: ArkitNaming::Swift,
         }
     }
 }

@@ -44,20 +44,21 @@ pub(super) fn morph_targets(
     let mut clip_targets: Vec<(String, usize)> = Vec::new();
     let (named, left_out) = expressions::for_rig(params.names, &basis.muscle_ids);
     let mut partial = Map::new();
+    let spelled = |name: &str| params.arkit_naming.name(name);
     for r in &named {
         let e = r.expression;
         if !r.resolved.missing.is_empty() {
-            partial.insert(e.name.into(), json!(r.resolved.missing));
+            partial.insert(spelled(e.name), json!(r.resolved.missing));
         }
         if e.set == NameSet::Vrm && !params.names.facebem && e.name != "neutral" {
             clip_targets.push((e.name.to_string(), targets.len()));
         }
-        targets.push((e.name.to_string(), field_of(basis, &r.resolved.sliders)));
+        targets.push((spelled(e.name), field_of(basis, &r.resolved.sliders)));
     }
     let mut left_out_json = Map::new();
     for (e, controls) in &left_out {
         left_out_json.insert(
-            e.name.into(),
+            spelled(e.name),
             json!(format!("controls not in this rig: {}", controls.join(", "))),
         );
     }
@@ -68,7 +69,7 @@ pub(super) fn morph_targets(
             NameSet::Vrm
         };
         if params.names.contains(set) {
-            left_out_json.insert(name.into(), json!(format!("not modelled: {why}")));
+            left_out_json.insert(spelled(name), json!(format!("not modelled: {why}")));
         }
     }
     if params.names.facebem {
