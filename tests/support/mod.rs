@@ -61,18 +61,24 @@ static VALIDATOR_INSTALL: std::sync::Mutex<()> = std::sync::Mutex::new(());
 /// holding `node_modules/gltf-validator`). With `FACEBEM_REQUIRE_GLTF_VALIDATOR=1` (CI) a
 /// missing node is a failure instead of a skip.
 pub fn validate_gltf(file: &Path) -> Validation {
-    run_node_script("validate_gltf.cjs", file)
+    run_node_script("validate_gltf.cjs", file, &[])
 }
 
 /// Loads `file` with three.js's GLTFLoader in node (npm `three`, pinned by the same
 /// `tests/gltf-validator/package-lock.json`) and returns what a three.js app gets (see
 /// `tests/support/three_load.mjs`).
 pub fn load_with_threejs(file: &Path) -> Validation {
-    run_node_script("three_load.mjs", file)
+    run_node_script("three_load.mjs", file, &[])
 }
 
-/// Runs `tests/support/<script> <npm dir> <file>` with node and parses its JSON output.
-fn run_node_script(script: &str, file: &Path) -> Validation {
+/// [`load_with_threejs`], after running the JavaScript `snippet` file on the loaded `gltf`.
+pub fn load_with_threejs_running(file: &Path, snippet: &Path) -> Validation {
+    run_node_script("three_load.mjs", file, &[snippet])
+}
+
+/// Runs `tests/support/<script> <npm dir> <file> <extra>…` with node and parses its JSON
+/// output.
+fn run_node_script(script: &str, file: &Path, extra: &[&Path]) -> Validation {
     if Command::new("node").arg("--version").output().is_err() {
         assert!(
             std::env::var_os("FACEBEM_REQUIRE_GLTF_VALIDATOR").is_none(),
@@ -106,6 +112,7 @@ fn run_node_script(script: &str, file: &Path) -> Validation {
         .arg(&script)
         .arg(&dir)
         .arg(file)
+        .args(extra)
         .output()
         .expect("cannot run node");
     assert!(

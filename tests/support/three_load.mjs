@@ -1,6 +1,8 @@
 // Loads a .glb with three.js's GLTFLoader (as a three.js app would, from the file's bytes) and
 // prints what the app gets: meshes with their morph target names, materials, bounding box,
 // animation clips. Usage: node three_load.mjs <dir holding node_modules/three> <file.glb>
+// [snippet.js]: a snippet (the README's) is run on the loaded `gltf` first, without its
+// `import` lines and the line that loads the file (this script loads it from the bytes).
 import fs from 'node:fs';
 import path from 'node:path';
 import { pathToFileURL } from 'node:url';
@@ -15,6 +17,15 @@ const buffer = bytes.buffer.slice(bytes.byteOffset, bytes.byteOffset + bytes.byt
 const gltf = await new Promise((resolve, reject) =>
   new GLTFLoader().parse(buffer, '', resolve, reject),
 );
+if (process.argv[4]) {
+  const body = fs
+    .readFileSync(process.argv[4], 'utf8')
+    .split('\n')
+    .filter((l) => !l.startsWith('import ') && !l.startsWith('const gltf ='))
+    .join('\n');
+  const AsyncFunction = (async () => {}).constructor;
+  await new AsyncFunction('gltf', 'THREE', body)(gltf, THREE);
+}
 const meshes = [];
 gltf.scene.traverse((o) => {
   if (!o.isMesh) return;

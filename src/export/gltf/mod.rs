@@ -378,12 +378,15 @@ fn asset_json(params: &GltfParams) -> Value {
     asset
 }
 
-/// The document's root: one scene, node, material and mesh with one primitive.
+/// The document's root: one scene, node, material and mesh with one primitive. The node and
+/// the mesh are named `face`, the scene `facebem`: three.js names its objects after them and
+/// makes a repeated name unique (`face_1`), so with the scene also named `face`,
+/// `getObjectByName('face')` found the scene instead of the mesh (issue 34).
 fn root_json(asset: Value, attributes: Value, indices: usize, extras: Value) -> Value {
     json!({
         "asset": asset,
         "scene": 0,
-        "scenes": [{ "name": "face", "nodes": [0] }],
+        "scenes": [{ "name": "facebem", "nodes": [0] }],
         "nodes": [{ "name": "face", "mesh": 0 }],
         "materials": [{
             "name": MATERIAL_NAME,
