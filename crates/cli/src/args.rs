@@ -69,6 +69,9 @@ pub(crate) enum Command {
         /// Output OBJ.
         #[arg(short, long)]
         output: PathBuf,
+        /// Rig options, used when RIG is a face mesh (a rig file keeps its own).
+        #[command(flatten)]
+        solver: SolverArgs,
         /// Write it even when the rig is not trustworthy (a near-singular solve, a shell that
         /// crosses itself, a control that moves the skin past the documented limits); the
         /// causes are printed as warnings.
@@ -97,6 +100,9 @@ pub(crate) enum Command {
         /// Live Link Face and Face Cap send them). `pose --preset` accepts both.
         #[arg(long, default_value = "arkit", value_parser = facebem::export::ArkitNaming::parse)]
         naming: facebem::export::ArkitNaming,
+        /// Rig options, used when RIG is a face mesh (a rig file keeps its own).
+        #[command(flatten)]
+        solver: SolverArgs,
         /// Write it even when the rig is not trustworthy (a near-singular solve, a shell that
         /// crosses itself, a control that moves the skin past the documented limits); the
         /// causes are printed as warnings.
@@ -127,6 +133,9 @@ pub(crate) struct SheetArgs {
     /// ARKit blendshapes or the VRM 1.0 presets the rig can make.
     #[arg(long, value_parser = ["muscles", "presets", "arkit", "vrm"])]
     pub(crate) only: Option<String>,
+    /// Rig options, used when RIG is a face mesh (a rig file keeps its own).
+    #[command(flatten)]
+    pub(crate) solver: SolverArgs,
 }
 
 #[derive(Args)]

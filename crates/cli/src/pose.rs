@@ -6,8 +6,9 @@ use anyhow::{Context, Result, anyhow, bail};
 use facebem::expressions::{self, NameSet, NameSets, presets};
 use facebem::input::Opened;
 
+use crate::args::SolverArgs;
 use crate::open;
-use crate::rig::{check_trust, model_from, model_from_opened};
+use crate::rig::{check_trust, model_from, model_from_opened, pipeline_params};
 
 fn parse_set(s: &str) -> Result<(String, f64)> {
     let (id, value) = s
@@ -28,8 +29,10 @@ pub(crate) fn pose(
     sets: &[String],
     preset: Option<&str>,
     output: &Path,
+    solver: &SolverArgs,
     force: bool,
 ) -> Result<()> {
+    let params = pipeline_params(solver)?;
     facebem::check_output(output, &[rig], &["obj"], "a pose (OBJ)")?;
     let parsed: Vec<(String, f64)> = sets.iter().map(|s| parse_set(s)).collect::<Result<_>>()?;
     if let Some(name) = preset
@@ -62,7 +65,7 @@ pub(crate) fn pose(
         };
         bail!("unknown muscle {id:?} (known: {}{more})", shown.join(", "));
     }
-    let model = model_from_opened(rig, opened)?;
+    let model = model_from_opened(rig, opened, &params)?;
     check_trust(&model, force)?;
     let ids = model.muscle_ids().to_vec();
     let mut sliders = vec![0.0; ids.len()];
@@ -98,10 +101,12 @@ pub(crate) fn export(
     animation: bool,
     names: NameSets,
     arkit_naming: facebem::export::ArkitNaming,
+    solver: &SolverArgs,
     force: bool,
 ) -> Result<()> {
+    let params = pipeline_params(solver)?;
     facebem::check_output(gltf, &[rig], &["glb", "gltf"], "a glTF export")?;
-    let model = model_from(rig)?;
+    let model = model_from(rig, &params)?;
     check_trust(&model, force)?;
     let params = facebem::export::GltfParams {
         animation,

@@ -43,19 +43,34 @@ fn compute(
     Ok(model)
 }
 
-/// A posable model from a rig file, or from a face mesh computed with default parameters.
-pub(crate) fn model_from(path: &Path) -> Result<FaceModel> {
-    model_from_opened(path, open(path)?)
+/// A posable model from a rig file, or from a face mesh computed first with `params` (the
+/// command line's rig options, [`pipeline_params`]).
+pub(crate) fn model_from(path: &Path, params: &PipelineParams) -> Result<FaceModel> {
+    model_from_opened(path, open(path)?, params)
 }
 
-/// Like [`model_from`], for a file already opened.
-pub(crate) fn model_from_opened(path: &Path, opened: Opened) -> Result<FaceModel> {
+/// Like [`model_from`], for a file already opened. A rig file was computed with its own
+/// options: rig options other than the defaults are refused with one, rather than ignored.
+pub(crate) fn model_from_opened(
+    path: &Path,
+    opened: Opened,
+    params: &PipelineParams,
+) -> Result<FaceModel> {
     match opened {
-        Opened::Model(model) => Ok(*model),
+        Opened::Model(model) => {
+            if *params != PipelineParams::default() {
+                bail!(
+                    "{} is a rig file, computed with its own options: --units, --muscle-model \
+                     and the other rig options apply to a face mesh",
+                    path.display()
+                );
+            }
+            Ok(*model)
+        }
         Opened::Face { mesh, obj_source } => {
             // On stdout: stderr holds only warnings and the one error line (issue 36).
             println!("{} is a face mesh: computing its rig first", path.display());
-            compute(&mesh, obj_source, &PipelineParams::default())
+            compute(&mesh, obj_source, params)
         }
     }
 }

@@ -4,17 +4,18 @@ use anyhow::Result;
 use facebem::expressions::{self, NameSet, NameSets};
 
 use crate::args::SheetArgs;
-use crate::rig::model_from;
+use crate::rig::{model_from, pipeline_params};
 
 pub(crate) fn sheet(args: &SheetArgs) -> Result<()> {
     use facebem::report::contact_sheet::{self, Selection, SheetOptions};
+    let params = pipeline_params(&args.solver)?;
     facebem::check_output(
         &args.output,
         &[&args.rig],
         &["png"],
         "a contact sheet (PNG)",
     )?;
-    let model = model_from(&args.rig)?;
+    let model = model_from(&args.rig, &params)?;
     let selection = match args.only.as_deref() {
         Some("muscles") => Selection::Muscles,
         Some("presets") => Selection::Presets,

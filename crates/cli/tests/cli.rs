@@ -563,3 +563,84 @@ fn arkit_raw_naming_round_trips_through_pose() {
     assert!(!out.status.success());
     assert!(stderr(&out).contains("unknown naming"), "{}", stderr(&out));
 }
+
+/// Issue 34, item 6: the rig options work wherever a face mesh is accepted (`pose`, `export`,
+/// `sheet` compute its rig first), are checked before any work, and are refused with a rig
+/// file, which keeps the options it was computed with.
+#[test]
+fn rig_options_apply_wherever_a_face_mesh_is_accepted() {
+    let (dir, rig) = rigged();
+    let face = support::asset(support::FACES[0]);
+    let thesis = {
+        let (mesh, _) = facebem::input::read_face(&face).unwrap();
+        let mut params = facebem::PipelineParams::default();
+        params.rig.muscle_model = face_prep::muscle_model::MuscleModel::Thesis;
+        facebem::build_face_model(&mesh, &params, &facebem::Control::new()).unwrap()
+    };
+    let own = 2 * thesis.basis.muscle_count() + facebem::expressions::presets::ALL.len() - 1;
+    let glb = dir.path().join("thesis.glb");
+    let out = facebem(&[
+        "export",
+        s(&face),
+        "--muscle-model",
+        "thesis",
+        "--names",
+        "facebem",
+        "--gltf",
+        s(&glb),
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert!(
+        stdout(&out).contains(&format!("{own} morph targets")),
+        "{}",
+        stdout(&out)
+    );
+    // The thesis model's pose of a face mesh is the library's.
+    let obj = dir.path().join("thesis.obj");
+    let out = facebem(&[
+        "pose",
+        s(&face),
+        "--muscle-model",
+        "thesis",
+        "--set",
+        "frontalis_l=-1",
+        "-o",
+        s(&obj),
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let mut sliders = vec![0.0; thesis.muscle_ids().len()];
+    sliders[thesis.basis.muscle_index("frontalis_l").unwrap()] = -1.0;
+    let posed = face_prep::FaceMesh::from_obj_str(&std::fs::read_to_string(&obj).unwrap())
+        .unwrap()
+        .vertices;
+    let expected = thesis.pose(&sliders).unwrap();
+    let worst = posed
+        .iter()
+        .zip(&expected)
+        .map(|(a, b)| a.distance(*b))
+        .fold(0.0, f64::max);
+    assert!(worst < 1e-9, "{worst}");
+    // With a rig file, a rig option is refused, not ignored; out of range, before any work.
+    for (command, extra) in [
+        ("pose", vec!["--preset", "happy", "-o"]),
+        ("sheet", vec!["-o"]),
+    ] {
+        let target = dir
+            .path()
+            .join(if command == "pose" { "r.obj" } else { "r.png" });
+        let mut args = vec![command, s(rig), "--units", "mm"];
+        args.extend(extra.iter());
+        args.push(s(&target));
+        assert_one_line_error(&facebem(&args), &["is a rig file", "--units"]);
+        assert!(!target.exists());
+    }
+    let out = facebem(&[
+        "export",
+        s(rig),
+        "--offset",
+        "5",
+        "--gltf",
+        s(&dir.path().join("o.glb")),
+    ]);
+    assert_one_line_error(&out, &["--offset 5.0 is out of range"]);
+}
