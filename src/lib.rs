@@ -52,7 +52,8 @@ pub use model::{
 };
 pub use pipeline::{build_face_model, prep_rig, prepare};
 
-/// The README's Rust example, compiled as a doctest so it cannot drift from the API.
+/// The README's Rust example, run as a doctest (on the bundled default face) so it cannot
+/// drift from the API.
 #[cfg(doctest)]
 #[doc = include_str!("../README.md")]
 pub struct ReadmeDoctests;

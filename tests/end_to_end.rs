@@ -11,6 +11,8 @@
 //! of `load_or_build`, shell offsets, feature boxes) are in `tests/pipeline_runs.rs`.
 
 mod end_to_end_common;
+#[path = "support/gltf_targets.rs"]
+mod gltf_targets;
 mod support;
 
 use std::sync::OnceLock;
@@ -324,24 +326,46 @@ fn gltf_exports_validate_and_match(face: usize) {
             (0.12..=0.30).contains(&height_m),
             "bounding box height {height_m} m"
         );
-        let targets: Vec<Vec<[f32; 3]>> = reader
-            .read_morph_targets()
-            .map(|(p, _, _)| p.unwrap().collect())
-            .collect();
-        // The ARKit and VRM targets first, then each muscle's contract and relax, then the
-        // presets.
-        let (named, _) = facebem::expressions::for_rig(Default::default(), m.muscle_ids());
-        let first_own = named.len();
-        assert_eq!(
-            targets.len(),
-            first_own + 2 * m.basis.muscle_count() + facebem::expressions::presets::ALL.len() - 1
-        );
-        for k in 0..m.basis.muscle_count() {
+        // Every muscle's contract and relax, by name: written, or left out as the repeat of a
+        // written target (`sameAs`, `negativeOf`) and resolved to it.
+        let all = dir.path().join(format!("all_{name}"));
+        let params = GltfParams {
+            names: facebem::expressions::NameSets::ALL,
+            ..GltfParams::default()
+        };
+        m.write_gltf(&all, &params).unwrap();
+        support::assert_valid(&all);
+        let targets = gltf_targets::read(&all);
+        for (k, id) in m.muscle_ids().iter().enumerate() {
             let d = &m.basis.displacements[k];
+            let contract = &targets.positions[&format!("{id}_contract")];
+            let relax = &targets.positions[&format!("{id}_relax")];
             for (i, w) in m.mesh.input_to_vertex.iter().enumerate() {
                 let d = w.map_or(DVec3::ZERO, |w| d[w as usize] * metres);
-                assert_eq!(targets[first_own + 2 * k][i], (-d).as_vec3().to_array());
-                assert_eq!(targets[first_own + 2 * k + 1][i], d.as_vec3().to_array());
+                assert_eq!(contract[i], (-d).as_vec3().to_array());
+                assert_eq!(relax[i], d.as_vec3().to_array());
+            }
+        }
+        // The default file holds every ARKit name the rig makes, and no written target other
+        // than an ARKit one equals or negates another.
+        let lean = gltf_targets::read(&path);
+        let (named, _) = facebem::expressions::for_rig(Default::default(), m.muscle_ids());
+        for e in named
+            .iter()
+            .filter(|e| e.expression.set == facebem::expressions::NameSet::Arkit)
+        {
+            assert!(
+                lean.written.iter().any(|n| n == e.expression.name),
+                "{}",
+                e.expression.name
+            );
+        }
+        for (i, a) in lean.written.iter().enumerate() {
+            for b in &lean.written[..i] {
+                let (fa, fb) = (&lean.positions[a], &lean.positions[b]);
+                let neg: Vec<[f32; 3]> = fb.iter().map(|d| d.map(|c| -c)).collect();
+                let arkit = facebem::expressions::arkit::NAMES.contains(&a.as_str());
+                assert!(arkit || (fa != fb && *fa != neg), "{a} repeats {b}");
             }
         }
         // The replaceable skin material, and the source's licence.

@@ -39,16 +39,37 @@ fn extras(doc: &gltf::Document) -> serde_json::Value {
     serde_json::from_str(mesh.extras().as_ref().unwrap().get()).unwrap()
 }
 
+/// Names left out of a file as repeats of a written target (`sameAs`, `negativeOf`) or as all
+/// zero (`leftOutTargets`).
+fn repeats(x: &serde_json::Value) -> Vec<String> {
+    let mut out: Vec<String> = ["sameAs", "negativeOf"]
+        .iter()
+        .flat_map(|k| x[*k].as_object().into_iter().flatten())
+        .map(|(n, _)| n.clone())
+        .collect();
+    for (n, why) in x["leftOutTargets"].as_object().into_iter().flatten() {
+        if why.as_str().unwrap().starts_with("all zero") {
+            out.push(n.clone());
+        }
+    }
+    out
+}
+
 #[test]
 fn glb_holds_the_arkit_and_vrm_names_the_rig_can_make_first() {
     let m = model(0);
     let ids = m.muscle_ids();
     let dir = tempfile::tempdir().unwrap();
     let glb = dir.path().join("face.glb");
-    m.write_gltf(&glb, &Default::default()).unwrap();
+    let params = facebem::export::GltfParams {
+        names: NameSets::ALL,
+        ..Default::default()
+    };
+    m.write_gltf(&glb, &params).unwrap();
     support::assert_valid(&glb);
     let (doc, buffers, _) = gltf::import(&glb).unwrap();
     let x = extras(&doc);
+    let repeated = repeats(&x);
     let names: Vec<&str> = x["targetNames"]
         .as_array()
         .unwrap()
@@ -57,6 +78,7 @@ fn glb_holds_the_arkit_and_vrm_names_the_rig_can_make_first() {
         .collect();
 
     // Expected, from the tables and the rig's controls alone.
+    // (every ARKit name is written; a VRM one that repeats another is left out, and said).
     let expect_arkit: Vec<&str> = arkit::EXPRESSIONS
         .iter()
         .filter(|e| makeable(e, ids))
@@ -64,7 +86,7 @@ fn glb_holds_the_arkit_and_vrm_names_the_rig_can_make_first() {
         .collect();
     let expect_vrm: Vec<&str> = vrm::EXPRESSIONS
         .iter()
-        .filter(|e| makeable(e, ids))
+        .filter(|e| makeable(e, ids) && !repeated.iter().any(|r| r == e.name))
         .map(|e| e.name)
         .collect();
     let got_arkit: Vec<&str> = names
@@ -101,18 +123,27 @@ fn glb_holds_the_arkit_and_vrm_names_the_rig_can_make_first() {
         .iter()
         .all(|c| ids.iter().any(|i| i == c))
     {
-        assert!(got_arkit.len() >= 43 && got_vrm.len() == 14);
+        assert!(got_arkit.len() >= 43 && got_vrm.len() + repeated_vrm(&repeated) == 14);
     }
 
-    // Every other name of the 52 + 18 is listed as left out, with the reason.
+    // Every other name of the 52 + 18 is listed as left out, with the reason, or as the
+    // repeat of a written target; exactly one of these.
     let left_out = x["leftOutTargets"].as_object().unwrap();
     for n in arkit::NAMES.iter().chain(&vrm::NAMES) {
-        assert_eq!(
+        let listed = [
             names.contains(n),
-            !left_out.contains_key(*n),
-            "{n} must be exported or listed as left out"
+            left_out.contains_key(*n),
+            x["sameAs"].get(*n).is_some() || x["negativeOf"].get(*n).is_some(),
+        ];
+        assert_eq!(
+            listed.iter().filter(|l| **l).count(),
+            1,
+            "{n} must be exported, left out or a repeat: {listed:?}"
         );
     }
+    // The default face's VRM blinks are its ARKit blinks, and VRM neutral is the base mesh.
+    assert_eq!(x["sameAs"]["blinkLeft"], "eyeBlinkLeft");
+    assert!(repeated.iter().any(|r| r == "neutral"));
     assert!(
         left_out["eyeLookUpLeft"]
             .as_str()
@@ -170,9 +201,10 @@ fn names_option_picks_the_sets() {
             .iter()
             .map(|n| n.as_str().unwrap())
             .collect();
+        let repeated = repeats(&x);
         let expected: Vec<&str> = expressions::of_set(set)
             .iter()
-            .filter(|e| makeable(e, m.muscle_ids()))
+            .filter(|e| makeable(e, m.muscle_ids()) && !repeated.iter().any(|r| r == e.name))
             .map(|e| e.name)
             .collect();
         assert_eq!(got, expected);
@@ -192,6 +224,14 @@ fn names_option_picks_the_sets() {
         };
         assert_eq!(clips, want);
     }
+}
+
+/// How many of `repeated` are VRM names.
+fn repeated_vrm(repeated: &[String]) -> usize {
+    repeated
+        .iter()
+        .filter(|r| vrm::NAMES.contains(&r.as_str()))
+        .count()
 }
 
 /// Canonical displacement, mm, of vertex `v` for a named expression at full weight.

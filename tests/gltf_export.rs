@@ -1,6 +1,8 @@
 //! glTF export on a small analytic basis: Khronos glTF-Validator (0 errors) and a re-read with
 //! the gltf crate that compares every morph target with the basis.
 
+#[path = "support/gltf_targets.rs"]
+mod gltf_targets;
 mod support;
 
 use facebem::MuscleBasis;
@@ -62,11 +64,13 @@ fn check_file(path: &std::path::Path, basis: &MuscleBasis) {
     let names = target_names(&doc);
     // The ARKit and VRM names the two muscles can make come first (ARKit: browDownRight,
     // browInnerUp, browOuterUpRight, mouthSmileLeft; VRM: the five facebem presets, relaxed and
-    // ih), then 2 muscles x 2 actions + 8 presets (neutral is the base mesh).
-    let first_own = 4 + 7;
-    assert_eq!(names.len(), first_own + 2 * 2 + 8, "{names:?}");
+    // ih; neutral, the base mesh, is left out), then the muscles' contractions that no named
+    // target already is (none: in this two-muscle rig VRM surprised is frontalis_r contracted)
+    // and the presets that no VRM one is (the other four); every relax is −1 × a written
+    // target and left out.
+    let first_own = 4 + 6;
     assert_eq!(
-        names[..first_own],
+        names,
         [
             "browDownRight",
             "browInnerUp",
@@ -78,12 +82,24 @@ fn check_file(path: &std::path::Path, basis: &MuscleBasis) {
             "relaxed",
             "surprised",
             "ih",
-            "neutral"
+            "preset_smile",
+            "preset_laugh",
+            "preset_disgust",
+            "preset_fear",
         ]
     );
-    assert_eq!(names[first_own], "zygomaticus_major_l_contract");
-    assert_eq!(names[first_own + 3], "frontalis_r_relax");
-    assert!(names.contains(&"preset_happy".to_string()));
+    let read = gltf_targets::read(path);
+    assert_eq!(
+        read.extras["sameAs"]["zygomaticus_major_l_contract"],
+        "mouthSmileLeft"
+    );
+    assert_eq!(read.extras["sameAs"]["preset_happy"], "happy");
+    assert_eq!(read.extras["sameAs"]["frontalis_r_contract"], "surprised");
+    assert_eq!(read.extras["negativeOf"]["frontalis_r_relax"], "surprised");
+    assert_eq!(
+        read.extras["leftOutTargets"]["neutral"],
+        "all zero: the base mesh is this expression"
+    );
     let prim = mesh.primitives().next().unwrap();
     let reader = prim.reader(|b| Some(&buffers[b.index()]));
     let positions: Vec<[f32; 3]> = reader.read_positions().unwrap().collect();
@@ -92,30 +108,25 @@ fn check_file(path: &std::path::Path, basis: &MuscleBasis) {
     }
     let indices: Vec<u32> = reader.read_indices().unwrap().into_u32().collect();
     assert_eq!(indices.len(), basis.triangles.len() * 3);
-    let targets: Vec<Vec<[f32; 3]>> = reader
-        .read_morph_targets()
-        .map(|(p, _, _)| p.unwrap().collect())
-        .collect();
-    assert_eq!(targets.len(), names.len());
-    // contract = -D, relax = +D, exactly (f32 of the f64 field); mouthSmileLeft is the left
-    // zygomaticus contracted; VRM's happy is facebem's happy preset.
-    let at = |name: &str| names.iter().position(|n| n == name).unwrap();
-    for k in 0..2 {
+    assert_eq!(read.written.len(), names.len());
+    assert!(names[first_own..].iter().all(|n| n.contains('_')));
+    // contract = -D, relax = +D, exactly (f32 of the f64 field), whether written or resolved
+    // through the repeat it is.
+    for (k, id) in basis.muscle_ids.iter().enumerate() {
+        let contract = &read.positions[&format!("{id}_contract")];
+        let relax = &read.positions[&format!("{id}_relax")];
         for (v, d) in basis.displacements[k].iter().enumerate() {
-            assert_eq!(targets[first_own + 2 * k][v], (-*d).as_vec3().to_array());
-            assert_eq!(targets[first_own + 2 * k + 1][v], d.as_vec3().to_array());
+            assert_eq!(contract[v], (-*d).as_vec3().to_array());
+            assert_eq!(relax[v], d.as_vec3().to_array());
         }
     }
-    assert_eq!(targets[at("mouthSmileLeft")], targets[first_own]);
-    assert_eq!(targets[at("happy")], targets[at("preset_happy")]);
-    assert!(targets[at("neutral")].iter().all(|d| *d == [0.0; 3]));
     // The happy preset target equals the pose's displacement (f32 tolerance 1e-7 relative).
     let happy = facebem::expressions::presets::find("happy").unwrap();
     let posed = basis.pose(&happy.sliders_for(&basis.muscle_ids)).unwrap();
-    let t = names.iter().position(|n| n == "preset_happy").unwrap();
+    let preset_happy = &read.positions["preset_happy"];
     for v in 0..posed.len() {
         let expect = posed[v] - basis.neutral[v];
-        let got = glam::Vec3::from(targets[t][v]).as_dvec3();
+        let got = glam::Vec3::from(preset_happy[v]).as_dvec3();
         assert!(
             (got - expect).length() < 1e-7,
             "vertex {v}: {got} vs {expect}"
@@ -135,11 +146,13 @@ fn animation_gives_one_clip_per_expression_named_after_it() {
     let path = dir.path().join("animated.glb");
     let params = GltfParams {
         animation: true,
+        names: facebem::expressions::NameSets::ALL,
         ..GltfParams::default()
     };
     write_gltf(&path, &basis, &params).unwrap();
     support::assert_valid(&path);
     let (doc, buffers, _) = gltf::import(&path).unwrap();
+    let read = gltf_targets::read(&path);
     let expressions: Vec<&str> = facebem::expressions::presets::ALL
         .iter()
         .map(|p| p.name)
@@ -153,10 +166,10 @@ fn animation_gives_one_clip_per_expression_named_after_it() {
     let names = target_names(&doc);
     let targets = names.len();
     for (k, anim) in doc.animations().enumerate() {
-        let t = names
-            .iter()
-            .position(|n| *n == format!("preset_{}", expressions[k]))
-            .unwrap();
+        // The preset's target, or the VRM one it repeats (preset_happy is happy).
+        let own = format!("preset_{}", expressions[k]);
+        let target = read.extras["sameAs"][&own].as_str().unwrap_or(&own);
+        let t = names.iter().position(|n| n == target).unwrap();
         let channel = anim.channels().next().unwrap();
         let reader = channel.reader(|b| Some(&buffers[b.index()]));
         let times: Vec<f32> = reader.read_inputs().unwrap().collect();
@@ -180,7 +193,11 @@ fn glb_and_gltf_validate_and_reread_exactly() {
     let dir = tempfile::tempdir().unwrap();
     for name in ["grid.glb", "grid.gltf"] {
         let path = dir.path().join(name);
-        write_gltf(&path, &basis, &GltfParams::default()).unwrap();
+        let params = GltfParams {
+            names: facebem::expressions::NameSets::ALL,
+            ..GltfParams::default()
+        };
+        write_gltf(&path, &basis, &params).unwrap();
         check_file(&path, &basis);
     }
 }

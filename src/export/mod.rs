@@ -5,14 +5,15 @@
 pub mod attribution;
 pub mod gltf;
 pub mod layout;
+pub mod material;
 pub mod obj;
 
 use glam::DVec3;
 use std::path::Path;
 
 pub use gltf::{
-    ArkitNaming, GltfExportError, GltfFormat, GltfParams, MATERIAL_NAME, export_gltf,
-    export_gltf_layout,
+    ArkitNaming, GltfExportError, GltfFormat, GltfParams, GltfSummary, MATERIAL_NAME, build_gltf,
+    export_gltf, export_gltf_layout,
 };
 pub use layout::{ExportLayout, LayoutError};
 pub use obj::ObjExportError;
@@ -42,19 +43,21 @@ pub enum ExportError {
 }
 
 /// Writes `basis` as glTF to `path` (atomically); the container follows the extension
-/// (`.gltf` → embedded JSON, otherwise binary `.glb`), overriding `params.format`.
+/// (`.gltf` → embedded JSON, otherwise binary `.glb`), overriding `params.format`. Returns
+/// what the file holds.
 pub fn write_gltf(
     path: &Path,
     basis: &MuscleBasis,
     params: &GltfParams,
-) -> Result<(), ExportError> {
+) -> Result<GltfSummary, ExportError> {
     let params = GltfParams {
         format: GltfFormat::from_path(path),
         ..params.clone()
     };
-    let bytes = export_gltf(basis, &params)?;
+    let layout = ExportLayout::welded(&basis.neutral, &basis.triangles);
+    let (bytes, summary) = build_gltf(basis, &layout, &params)?;
     write_atomic(path, &bytes)?;
-    Ok(())
+    Ok(summary)
 }
 
 impl crate::FaceModel {
@@ -174,23 +177,28 @@ impl crate::FaceModel {
 
     /// glTF bytes of this face (see [`crate::FaceModel::write_gltf`]).
     pub fn gltf_bytes(&self, params: &GltfParams) -> Result<Vec<u8>, ExportError> {
+        Ok(self.gltf_bytes_and_summary(params)?.0)
+    }
+
+    /// glTF bytes of this face and what they hold ([`build_gltf`]).
+    pub fn gltf_bytes_and_summary(
+        &self,
+        params: &GltfParams,
+    ) -> Result<(Vec<u8>, GltfSummary), ExportError> {
         let layout = self.export_layout()?;
-        Ok(export_gltf_layout(
-            &self.basis,
-            &layout,
-            &self.gltf_params(params),
-        )?)
+        Ok(build_gltf(&self.basis, &layout, &self.gltf_params(params))?)
     }
 
     /// Writes the glTF morph-target export to `path` (atomically; `.gltf` or `.glb`, whatever
     /// `params.format` says): the user's vertex layout, positions in metres, the source's
-    /// attribution ([`crate::FaceModel::gltf_params`]).
-    pub fn write_gltf(&self, path: &Path, params: &GltfParams) -> Result<(), ExportError> {
+    /// attribution ([`crate::FaceModel::gltf_params`]). Returns what the file holds.
+    pub fn write_gltf(&self, path: &Path, params: &GltfParams) -> Result<GltfSummary, ExportError> {
         let params = GltfParams {
             format: GltfFormat::from_path(path),
             ..params.clone()
         };
-        write_atomic(path, &self.gltf_bytes(&params)?)?;
-        Ok(())
+        let (bytes, summary) = self.gltf_bytes_and_summary(&params)?;
+        write_atomic(path, &bytes)?;
+        Ok(summary)
     }
 }

@@ -82,11 +82,12 @@ impl NameSet {
 }
 
 /// Which name sets an export writes (`--names facebem|arkit|vrm|all`, comma-separated
-/// combinations allowed). Default: all.
+/// combinations allowed). Default: [`NameSets::USERS`], ARKit and VRM: the names tools consume.
 ///
 /// ```
 /// use facebem::expressions::NameSets;
 /// assert_eq!(NameSets::parse("all"), Ok(NameSets::ALL));
+/// assert_eq!(NameSets::default(), NameSets::parse("arkit,vrm").unwrap());
 /// let s = NameSets::parse("arkit,vrm").unwrap();
 /// assert!(s.arkit && s.vrm && !s.facebem);
 /// assert!(NameSets::parse("blender").is_err());
@@ -103,7 +104,7 @@ pub struct NameSets {
 
 impl Default for NameSets {
     fn default() -> Self {
-        NameSets::ALL
+        NameSets::USERS
     }
 }
 
@@ -111,6 +112,13 @@ impl NameSets {
     /// Every set.
     pub const ALL: NameSets = NameSets {
         facebem: true,
+        arkit: true,
+        vrm: true,
+    };
+    /// ARKit and VRM: what avatars, engines and face-capture apps consume (the default; issue
+    /// 34: facebem's own muscle targets mostly repeat them and tripled the file).
+    pub const USERS: NameSets = NameSets {
+        facebem: false,
         arkit: true,
         vrm: true,
     };

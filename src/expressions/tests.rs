@@ -214,7 +214,7 @@ fn name_sets_parse() {
     let v = NameSets::parse(" vrm ").unwrap();
     assert!(v.vrm && !v.arkit && !v.facebem);
     assert!(NameSets::parse("arkit,,vrm").is_err());
-    assert_eq!(NameSets::default(), NameSets::ALL);
+    assert_eq!(NameSets::default(), NameSets::USERS);
 }
 
 /// ARKit's raw location strings (`ARFaceAnchor.BlendShapeLocation.rawValue`, what Live Link

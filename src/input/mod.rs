@@ -236,6 +236,11 @@ pub fn load_or_build(
         Ok(mut model) => {
             // The cache is keyed by geometry: the layout (UVs, normals, comments) is this file's.
             model.obj_source = obj_source;
+            // Used now: the last to be pruned.
+            let _ = std::fs::File::options()
+                .append(true)
+                .open(cache_path)
+                .and_then(|f| f.set_modified(std::time::SystemTime::now()));
             return Ok((model, CacheStatus::Loaded));
         }
         Err(e) => e.to_string(),
@@ -243,7 +248,67 @@ pub fn load_or_build(
     let mut model = build_face_model(mesh, params, control)?;
     model.obj_source = obj_source;
     let save_error = cache::save(cache_path, &model).err().map(|e| e.to_string());
+    if save_error.is_none()
+        && let Some(dir) = cache_path.parent()
+    {
+        prune_cache(dir, CACHE_KEEP);
+    }
     Ok((model, CacheStatus::Computed { reason, save_error }))
+}
+
+/// Where the rig of `mesh` computed with `params` is cached in `dir`: one file per mesh and
+/// parameter set, `<dir>/<mesh hash>-<params hash>.rig` (so going back to earlier parameters
+/// reloads instantly). The viewer and the command line share it; `dir` is normally
+/// [`default_cache_dir`].
+///
+/// ```
+/// use facebem::input::{cache_file_for, default_face};
+/// let mesh = default_face().unwrap();
+/// let p = facebem::PipelineParams::default();
+/// let path = cache_file_for(std::path::Path::new("/tmp"), &mesh, &p);
+/// assert!(facebem::input::is_cache_file_name(path.file_name().unwrap().to_str().unwrap()));
+/// ```
+pub fn cache_file_for(dir: &Path, mesh: &FaceMesh, params: &PipelineParams) -> PathBuf {
+    let hex = |bytes: &[u8]| bytes.iter().map(|b| format!("{b:02x}")).collect::<String>();
+    let mesh_hash = cache::mesh_hash(mesh);
+    let params_hash = cache::params_hash(params);
+    dir.join(format!(
+        "{}-{}.rig",
+        hex(&mesh_hash[..12]),
+        hex(&params_hash[..6])
+    ))
+}
+
+/// Whether `name` is a cache file's name ([`cache_file_for`]): 24 hex digits, `-`, 12 hex
+/// digits, `.rig`. Only such files are ever pruned.
+pub fn is_cache_file_name(name: &str) -> bool {
+    let hex = |s: &str, n: usize| s.len() == n && s.bytes().all(|b| b.is_ascii_hexdigit());
+    name.strip_suffix(".rig")
+        .and_then(|stem| stem.split_once('-'))
+        .is_some_and(|(mesh, params)| hex(mesh, 24) && hex(params, 12))
+}
+
+/// Rig files kept in a cache folder ([`prune_cache`]): a large face's rig is tens of MB.
+pub const CACHE_KEEP: usize = 32;
+
+/// Deletes all but the `keep` most recently written or used cache files
+/// ([`is_cache_file_name`]) in `dir`; returns how many were deleted. Other files are never
+/// touched; errors are ignored (it is a cache).
+pub fn prune_cache(dir: &Path, keep: usize) -> usize {
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return 0;
+    };
+    let mut files: Vec<(std::time::SystemTime, PathBuf)> = entries
+        .flatten()
+        .filter(|e| e.file_name().to_str().is_some_and(is_cache_file_name))
+        .filter_map(|e| Some((e.metadata().ok()?.modified().ok()?, e.path())))
+        .collect();
+    files.sort_by_key(|f| std::cmp::Reverse(f.0));
+    files
+        .iter()
+        .skip(keep)
+        .filter(|(_, path)| std::fs::remove_file(path).is_ok())
+        .count()
 }
 
 /// Where the default face's cache lives: `$XDG_CACHE_HOME/facebem/` or `~/.cache/facebem/`
@@ -284,4 +349,46 @@ pub fn default_model(
         &path,
         control,
     )?)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The rig cache keeps the newest [`CACHE_KEEP`] cache files and never touches a file
+    /// whose name is not a cache file's.
+    #[test]
+    fn pruning_keeps_the_newest_cache_files_and_nothing_else_is_touched() {
+        let dir = tempfile::tempdir().unwrap();
+        let now = std::time::SystemTime::now();
+        let mut names = vec![];
+        for k in 0..5u64 {
+            let name = format!("{:024x}-{:012x}.rig", k, k);
+            let path = dir.path().join(&name);
+            let file = std::fs::File::create(&path).unwrap();
+            // File k was used k minutes ago.
+            file.set_modified(now - std::time::Duration::from_secs(60 * k))
+                .unwrap();
+            names.push(name);
+        }
+        for other in ["face.rig", "notes.txt", "0123-45.rig"] {
+            std::fs::write(dir.path().join(other), b"x").unwrap();
+        }
+        assert_eq!(prune_cache(dir.path(), 2), 3);
+        let mut left: Vec<String> = std::fs::read_dir(dir.path())
+            .unwrap()
+            .map(|e| e.unwrap().file_name().into_string().unwrap())
+            .collect();
+        left.sort();
+        let mut want = vec![
+            names[0].clone(),
+            names[1].clone(),
+            "0123-45.rig".into(),
+            "face.rig".into(),
+            "notes.txt".into(),
+        ];
+        want.sort();
+        assert_eq!(left, want);
+        assert!(!is_cache_file_name("face.rig") && is_cache_file_name(&names[3]));
+    }
 }

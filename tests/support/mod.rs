@@ -297,3 +297,55 @@ pub fn retriangulated(mesh: &face_prep::FaceMesh, seed: u64) -> face_prep::FaceM
         mouth_bag_vertices: 0,
     }
 }
+
+/// The first ```` ```lang ```` block of README.md, its lines unindented (the README indents
+/// blocks inside its numbered steps): what a user copies.
+pub fn readme_block(lang: &str) -> String {
+    let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
+    let fence = format!("```{lang}\n");
+    let start = readme
+        .find(&fence)
+        .unwrap_or_else(|| panic!("the README has no {lang} block"))
+        + fence.len();
+    let end = start + readme[start..].find("```").unwrap();
+    readme[start..end]
+        .lines()
+        .map(|l| l.trim_start())
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+/// The positions of the `v` lines of the OBJ file `path`, in file order.
+pub fn obj_v_lines(path: &Path) -> Vec<[f64; 3]> {
+    std::fs::read_to_string(path)
+        .unwrap()
+        .lines()
+        .filter_map(|l| l.strip_prefix("v "))
+        .map(|l| {
+            let c: Vec<f64> = l.split_whitespace().map(|t| t.parse().unwrap()).collect();
+            [c[0], c[1], c[2]]
+        })
+        .collect()
+}
+
+/// The JSON of a `.glb` (its JSON chunk) or `.gltf` file.
+pub fn glb_json(path: &Path) -> serde_json::Value {
+    let bytes = std::fs::read(path).unwrap();
+    if bytes.starts_with(b"glTF") {
+        let len = u32::from_le_bytes(bytes[12..16].try_into().unwrap()) as usize;
+        serde_json::from_slice(&bytes[20..20 + len]).unwrap()
+    } else {
+        serde_json::from_slice(&bytes).unwrap()
+    }
+}
+
+/// `meshes[0].extras.targetNames` of a glTF export.
+pub fn glb_target_names(path: &Path) -> Vec<String> {
+    let json = glb_json(path);
+    json["meshes"][0]["extras"]["targetNames"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|n| n.as_str().unwrap().to_string())
+        .collect()
+}

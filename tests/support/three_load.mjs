@@ -1,6 +1,7 @@
 // Loads a .glb with three.js's GLTFLoader (as a three.js app would, from the file's bytes) and
-// prints what the app gets: meshes with their morph target names, materials, bounding box,
-// animation clips. Usage: node three_load.mjs <dir holding node_modules/three> <file.glb>
+// prints what the app gets: meshes with their morph target names and position deltas,
+// materials, bounding box, animation clips. A file compressed with EXT_meshopt_compression is
+// decoded by three.js's own MeshoptDecoder, set as its documentation says. Usage: node three_load.mjs <dir holding node_modules/three> <file.glb>
 // [snippet.js]: a snippet (the README's) is run on the loaded `gltf` first, without its
 // `import` lines and the line that loads the file (this script loads it from the bytes).
 import fs from 'node:fs';
@@ -12,11 +13,13 @@ const THREE = await import(pathToFileURL(path.join(dir, 'build', 'three.module.j
 const { GLTFLoader } = await import(
   pathToFileURL(path.join(dir, 'examples', 'jsm', 'loaders', 'GLTFLoader.js'))
 );
+const { MeshoptDecoder } = await import(
+  pathToFileURL(path.join(dir, 'examples', 'jsm', 'libs', 'meshopt_decoder.module.js'))
+);
 const bytes = fs.readFileSync(process.argv[3]);
 const buffer = bytes.buffer.slice(bytes.byteOffset, bytes.byteOffset + bytes.byteLength);
-const gltf = await new Promise((resolve, reject) =>
-  new GLTFLoader().parse(buffer, '', resolve, reject),
-);
+const loader = new GLTFLoader().setMeshoptDecoder(MeshoptDecoder);
+const gltf = await new Promise((resolve, reject) => loader.parse(buffer, '', resolve, reject));
 if (process.argv[4]) {
   const body = fs
     .readFileSync(process.argv[4], 'utf8')
@@ -36,6 +39,8 @@ gltf.scene.traverse((o) => {
     attributes: Object.keys(g.attributes).sort(),
     morphTargets: Object.keys(o.morphTargetDictionary ?? {}),
     morphTargetInfluences: o.morphTargetInfluences ?? [],
+    positions: Array.from(g.attributes.position.array),
+    morphPositions: (g.morphAttributes.position ?? []).map((a) => Array.from(a.array)),
     material: {
       type: o.material.type,
       name: o.material.name,

@@ -47,11 +47,25 @@ pub(crate) enum Command {
         /// causes are printed as warnings.
         #[arg(long)]
         force: bool,
+        /// Print one JSON object (what was found, warnings, trust, sizes, times) instead of
+        /// the text report.
+        #[arg(long)]
+        json: bool,
     },
     /// Print loops, feature boxes, muscles and sizes of a face or rig file.
     Info {
         /// Face mesh or rig file.
         file: PathBuf,
+        /// Print one JSON object (the file, its unit, loops, muscles, controls, the names it
+        /// makes, warnings, trust) instead of the text report.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Print a shell completion script: `facebem completions bash > /etc/bash_completion.d/facebem`
+    /// (or zsh, fish, elvish, powershell).
+    Completions {
+        /// The shell.
+        shell: clap_complete::Shell,
     },
     /// Write an OBJ of a pose (a preset, then individual sliders on top).
     #[command(after_help = presets_help())]
@@ -91,15 +105,27 @@ pub(crate) enum Command {
         #[arg(long)]
         animation: bool,
         /// Morph target names to write: `arkit` (ARKit blendshapes), `vrm` (VRM 1.0 presets),
-        /// `facebem` (each muscle's `_contract`/`_relax` and `preset_<name>`), `all`, or a
-        /// comma-separated list. ARKit and VRM targets come first.
-        #[arg(long, default_value = "all", value_parser = NameSets::parse)]
+        /// `facebem` (each muscle's `_contract` and `preset_<name>`), `all`, or a
+        /// comma-separated list. ARKit and VRM targets come first; a target equal to an earlier
+        /// one, its negative or all zero is left out and named in the file's
+        /// `mesh.extras.sameAs` / `negativeOf` / `leftOutTargets`.
+        #[arg(long, default_value = "arkit,vrm", value_parser = NameSets::parse)]
         names: NameSets,
         /// How the ARKit targets are spelled: `arkit` (`eyeBlinkLeft`, as glTF and three.js
         /// avatars name them) or `arkit-raw` (`eyeBlink_L`, ARKit's raw location strings, as
         /// Live Link Face and Face Cap send them). `pose --preset` accepts both.
         #[arg(long, default_value = "arkit", value_parser = facebem::export::ArkitNaming::parse)]
         naming: facebem::export::ArkitNaming,
+        /// Print one JSON object (the targets written, the repeats left out, warnings, trust,
+        /// times) instead of the text report.
+        #[arg(long)]
+        json: bool,
+        /// Compress the file with `EXT_meshopt_compression` (a third of the size; three.js
+        /// needs `loader.setMeshoptDecoder(MeshoptDecoder)`, Blender 3.4 cannot read it).
+        /// Positions are kept to 2^-19 of the largest coordinate (0.6 µm on a 0.3 m head), a
+        /// target's deltas to 2^-15 of its largest, normals to 2^-11.
+        #[arg(long)]
+        compress: bool,
         /// Rig options, used when RIG is a face mesh (a rig file keeps its own).
         #[command(flatten)]
         solver: SolverArgs,
@@ -174,6 +200,11 @@ pub(crate) struct SolverArgs {
     /// in mm) or `thesis` (the 2002 thesis's chain rule, reproduced exactly).
     #[arg(long, default_value = "anatomical", value_parser = parse_muscle_model)]
     pub(crate) muscle_model: face_prep::muscle_model::MuscleModel,
+    /// Compute a face mesh's rig even when the rig cache holds it, and do not save it there
+    /// (the cache, shared with the viewer, is $XDG_CACHE_HOME/facebem or ~/.cache/facebem:
+    /// one file per mesh and set of rig options, the 32 most recent kept).
+    #[arg(long)]
+    pub(crate) no_cache: bool,
 }
 
 fn parse_copy_method(s: &str) -> Result<facebem::copy::CopyMethod, String> {

@@ -11,7 +11,18 @@
 //!
 //! Errors print one line naming the problem and exit with status 1 (2 for usage errors).
 
+/// `println!` that does not panic when stdout is closed ([`write_stdout`]).
+macro_rules! outln {
+    ($($t:tt)*) => { $crate::write_stdout(format_args!("{}\n", format_args!($($t)*))) };
+}
+
+/// `print!` that does not panic when stdout is closed ([`write_stdout`]).
+macro_rules! out {
+    ($($t:tt)*) => { $crate::write_stdout(format_args!($($t)*)) };
+}
+
 mod args;
+mod json;
 mod pose;
 mod rig;
 mod sheet;
@@ -35,6 +46,29 @@ static LIMITS: std::sync::OnceLock<face_prep::InputLimits> = std::sync::OnceLock
 fn open(path: &Path) -> Result<Opened, facebem::input::OpenError> {
     let limits = LIMITS.get().copied().unwrap_or_default();
     facebem::input::OpenOptions { limits }.open(path)
+}
+
+/// Writes a report line to stdout. Regression (found piping `facebem export … | head -1`):
+/// `println!` panicked ("failed printing to stdout: Broken pipe") once the reader had gone.
+/// A closed pipe now only ends the report: the command goes on and writes its files (the
+/// reader asked for no more text, not for less work); any other write error is one line on
+/// stderr and exit code 1.
+pub(crate) fn write_stdout(args: std::fmt::Arguments) {
+    use std::io::Write;
+    use std::sync::atomic::{AtomicBool, Ordering};
+    static CLOSED: AtomicBool = AtomicBool::new(false);
+    if crate::json::mode() || CLOSED.load(Ordering::Relaxed) {
+        return;
+    }
+    let mut stdout = std::io::stdout().lock();
+    if let Err(e) = stdout.write_fmt(args).and_then(|()| stdout.flush()) {
+        if e.kind() == std::io::ErrorKind::BrokenPipe {
+            CLOSED.store(true, Ordering::Relaxed);
+            return;
+        }
+        eprintln!("error: writing to stdout: {e}");
+        std::process::exit(1);
+    }
 }
 
 fn main() -> ExitCode {
@@ -109,8 +143,22 @@ fn run(cli: Cli) -> Result<()> {
             muscles,
             solver,
             force,
-        } => rig(&face, &output, muscles.as_deref(), &solver, force),
-        Command::Info { file } => info(&file),
+            json,
+        } => {
+            json::set_mode(json);
+            rig(&face, &output, muscles.as_deref(), &solver, force)
+        }
+        Command::Info { file, json } => {
+            json::set_mode(json);
+            info(&file)
+        }
+        Command::Completions { shell } => {
+            use clap::CommandFactory;
+            let mut text = Vec::new();
+            clap_complete::generate(shell, &mut Cli::command(), "facebem", &mut text);
+            out!("{}", String::from_utf8_lossy(&text));
+            Ok(())
+        }
         Command::Pose {
             rig,
             sets,
@@ -125,9 +173,21 @@ fn run(cli: Cli) -> Result<()> {
             animation,
             names,
             naming,
+            compress,
             solver,
             force,
-        } => export(&rig, &gltf, animation, names, naming, &solver, force),
+            json,
+        } => {
+            json::set_mode(json);
+            let params = facebem::export::GltfParams {
+                animation,
+                names,
+                arkit_naming: naming,
+                compress,
+                ..Default::default()
+            };
+            export(&rig, &gltf, params, &solver, force)
+        }
         Command::Muscles { face, output } => muscles(&face, &output),
         Command::Sheet(args) => sheet(&args),
     }

@@ -1,14 +1,14 @@
 //! `pose` and `export`.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result, anyhow, bail};
-use facebem::expressions::{self, NameSet, NameSets, presets};
+use facebem::expressions::{self, NameSet, presets};
 use facebem::input::Opened;
 
 use crate::args::SolverArgs;
 use crate::open;
-use crate::rig::{check_trust, model_from, model_from_opened, pipeline_params};
+use crate::rig::{check_trust, model_from_opened, pipeline_params};
 
 fn parse_set(s: &str) -> Result<(String, f64)> {
     let (id, value) = s
@@ -65,7 +65,7 @@ pub(crate) fn pose(
         };
         bail!("unknown muscle {id:?} (known: {}{more})", shown.join(", "));
     }
-    let model = model_from_opened(rig, opened, &params)?;
+    let (model, _) = model_from_opened(rig, opened, &params, solver.no_cache)?;
     check_trust(&model, force)?;
     let ids = model.muscle_ids().to_vec();
     let mut sliders = vec![0.0; ids.len()];
@@ -87,7 +87,7 @@ pub(crate) fn pose(
         sliders[k] = value;
     }
     model.write_obj(output, &sliders)?;
-    println!(
+    outln!(
         "{}: posed {} vertices",
         output.display(),
         model.mesh.vertices.len()
@@ -98,30 +98,90 @@ pub(crate) fn pose(
 pub(crate) fn export(
     rig: &Path,
     gltf: &Path,
-    animation: bool,
-    names: NameSets,
-    arkit_naming: facebem::export::ArkitNaming,
+    gltf_params: facebem::export::GltfParams,
     solver: &SolverArgs,
     force: bool,
 ) -> Result<()> {
+    let started = std::time::Instant::now();
     let params = pipeline_params(solver)?;
     facebem::check_output(gltf, &[rig], &["glb", "gltf"], "a glTF export")?;
-    let model = model_from(rig, &params)?;
-    check_trust(&model, force)?;
-    let params = facebem::export::GltfParams {
-        animation,
-        names,
-        arkit_naming,
-        ..Default::default()
+    let opened = crate::open(rig)?;
+    // The OBJ's own materials and textures, read from its folder (a rig file's: the folder it
+    // is in) before any work; they are inputs the output must not overwrite.
+    let obj_text = match &opened {
+        facebem::input::Opened::Face { obj_source, .. } => obj_source.as_deref(),
+        facebem::input::Opened::Model(model) => model.obj_source.as_deref(),
     };
-    model.write_gltf(gltf, &params)?;
-    let (made, left_out) = expressions::for_rig(names, model.muscle_ids());
-    let own = if names.facebem {
-        2 * model.basis.muscle_count() + presets::ALL.len() - 1
+    let folder = rig.parent().unwrap_or(Path::new("."));
+    let folder = if folder.as_os_str().is_empty() {
+        Path::new(".")
     } else {
-        0
+        folder
     };
-    println!("{}: {} morph targets", gltf.display(), made.len() + own);
+    let materials = obj_text
+        .map(|text| facebem::export::material::ObjMaterials::load(text, folder))
+        .transpose()?;
+    if let Some(m) = &materials {
+        let mut inputs: Vec<&Path> = vec![rig];
+        inputs.extend(m.files_read.iter().map(PathBuf::as_path));
+        facebem::check_output(gltf, &inputs, &["glb", "gltf"], "a glTF export")?;
+    }
+    let mut warnings: Vec<String> = materials.iter().flat_map(|m| m.warnings.clone()).collect();
+    let gltf_params = facebem::export::GltfParams {
+        materials,
+        ..gltf_params
+    };
+    let (model, source) = model_from_opened(rig, opened, &params, solver.no_cache)?;
+    check_trust(&model, force)?;
+    let (names, compress) = (gltf_params.names, gltf_params.compress);
+    let summary = model.write_gltf(gltf, &gltf_params)?;
+    warnings.extend(summary.warnings.iter().cloned());
+    for w in &warnings {
+        eprintln!("warning: {w}");
+    }
+    if crate::json::mode() {
+        let mut report = crate::json::model_report(&model);
+        report["command"] = "export".into();
+        report["input"] = serde_json::json!(rig);
+        report["output"] = serde_json::json!(gltf);
+        report["rigSource"] = source.json();
+        report["bytes"] = summary.bytes.into();
+        report["compressed"] = compress.into();
+        report["targets"] = serde_json::json!(summary.target_names);
+        report["sameAs"] = serde_json::json!(summary.same_as);
+        report["negativeOf"] = serde_json::json!(summary.negative_of);
+        report["leftOut"] = serde_json::json!(summary.left_out);
+        report["seconds"]["total"] = started.elapsed().as_secs_f64().into();
+        report["materialWarnings"] = serde_json::json!(warnings);
+        crate::json::print(&report);
+        return Ok(());
+    }
+    let (made, left_out) = expressions::for_rig(names, model.muscle_ids());
+    outln!(
+        "{}: {} morph targets, {:.0} KB{}",
+        gltf.display(),
+        summary.target_names.len(),
+        summary.bytes as f64 / 1000.0,
+        if compress {
+            " (EXT_meshopt_compression)"
+        } else {
+            ""
+        }
+    );
+    let repeats: Vec<String> = (summary.same_as.iter().map(|(a, b)| format!("{a} = {b}")))
+        .chain(
+            summary
+                .negative_of
+                .iter()
+                .map(|(a, b)| format!("{a} = -{b}")),
+        )
+        .collect();
+    if !repeats.is_empty() {
+        outln!(
+            "  left out as repeats (mesh.extras.sameAs, negativeOf): {}",
+            repeats.join(", ")
+        );
+    }
     for set in [NameSet::Arkit, NameSet::Vrm] {
         if !names.contains(set) {
             continue;
@@ -137,20 +197,20 @@ pub(crate) fn export(
             .filter(|(e, _)| e.set == set)
             .map(|(e, _)| e.name)
             .collect();
-        println!(
+        outln!(
             "  {}: {count} of {} names ({} not modelled: no eyeballs/tongue)",
             set.display_name(),
             set.standard_size(),
             set.standard_size() - expressions::of_set(set).len()
         );
         if !partial.is_empty() {
-            println!(
+            outln!(
                 "    from only some of their controls: {}",
                 partial.join(" ")
             );
         }
         if !missing.is_empty() {
-            println!(
+            outln!(
                 "    left out, their controls are not in this rig: {}",
                 missing.join(" ")
             );

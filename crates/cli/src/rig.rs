@@ -1,12 +1,12 @@
 //! `rig`, `info` and `muscles`, and computing a model from a face mesh with a progress bar.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::time::Duration;
 
 use anyhow::{Context, Result, bail};
 use face_prep::RigParams;
 use facebem::copy::LargeFaceParams;
-use facebem::input::Opened;
+use facebem::input::{CacheStatus, Opened};
 use facebem::{Control, FaceModel, PipelineParams, build_face_model, cache};
 use indicatif::{ProgressBar, ProgressStyle};
 
@@ -30,32 +30,89 @@ fn progress_control() -> (Control, ProgressBar) {
     (control, bar)
 }
 
+/// Where a command's rig came from.
+#[derive(Clone, Debug)]
+pub(crate) enum RigSource {
+    /// The rig file given.
+    RigFile,
+    /// The rig cache (`facebem::input::cache_file_for`).
+    Cache(PathBuf),
+    /// Computed now; saved in the cache there unless `--no-cache` (or saving failed).
+    Computed(Option<PathBuf>),
+}
+
+impl RigSource {
+    /// JSON: `{"from": "rig file" | "cache" | "computed", "cacheFile": …}`.
+    pub(crate) fn json(&self) -> serde_json::Value {
+        match self {
+            RigSource::RigFile => serde_json::json!({ "from": "rig file" }),
+            RigSource::Cache(p) => serde_json::json!({ "from": "cache", "cacheFile": p }),
+            RigSource::Computed(p) => serde_json::json!({ "from": "computed", "cacheFile": p }),
+        }
+    }
+}
+
+/// The model of `mesh` with `params`: from the rig cache the viewer shares when it holds it
+/// (unless `no_cache`), else computed with a progress bar and saved there.
 fn compute(
     mesh: &face_prep::FaceMesh,
     obj_source: Option<String>,
     params: &PipelineParams,
-) -> Result<FaceModel> {
+    no_cache: bool,
+) -> Result<(FaceModel, RigSource)> {
     let (control, bar) = progress_control();
-    let result = build_face_model(mesh, params, &control);
+    if no_cache {
+        let result = build_face_model(mesh, params, &control);
+        bar.finish_and_clear();
+        let mut model = result?;
+        model.obj_source = obj_source;
+        return Ok((model, RigSource::Computed(None)));
+    }
+    let dir = facebem::input::default_cache_dir();
+    // A cache that cannot be made is no error: `load_or_build` computes and says why.
+    let _ = std::fs::create_dir_all(&dir);
+    let path = facebem::input::cache_file_for(&dir, mesh, params);
+    let result = facebem::input::load_or_build(mesh, obj_source, params, &path, &control);
     bar.finish_and_clear();
-    let mut model = result?;
-    model.obj_source = obj_source;
-    Ok(model)
+    let (model, status) = result?;
+    Ok(match status {
+        CacheStatus::Loaded => {
+            outln!(
+                "rig loaded from the cache {} (--no-cache computes it again)",
+                path.display()
+            );
+            (model, RigSource::Cache(path))
+        }
+        CacheStatus::Computed {
+            save_error: Some(e),
+            ..
+        } => {
+            eprintln!("warning: the rig was not cached: {e}");
+            (model, RigSource::Computed(None))
+        }
+        CacheStatus::Computed { .. } => (model, RigSource::Computed(Some(path))),
+    })
 }
 
 /// A posable model from a rig file, or from a face mesh computed first with `params` (the
-/// command line's rig options, [`pipeline_params`]).
-pub(crate) fn model_from(path: &Path, params: &PipelineParams) -> Result<FaceModel> {
-    model_from_opened(path, open(path)?, params)
+/// command line's rig options, [`pipeline_params`]; the rig cache unless `no_cache`).
+pub(crate) fn model_from(
+    path: &Path,
+    params: &PipelineParams,
+    no_cache: bool,
+) -> Result<FaceModel> {
+    Ok(model_from_opened(path, open(path)?, params, no_cache)?.0)
 }
 
-/// Like [`model_from`], for a file already opened. A rig file was computed with its own
-/// options: rig options other than the defaults are refused with one, rather than ignored.
+/// Like [`model_from`], for a file already opened, saying where the rig came from. A rig file
+/// was computed with its own options: rig options other than the defaults are refused with
+/// one, rather than ignored.
 pub(crate) fn model_from_opened(
     path: &Path,
     opened: Opened,
     params: &PipelineParams,
-) -> Result<FaceModel> {
+    no_cache: bool,
+) -> Result<(FaceModel, RigSource)> {
     match opened {
         Opened::Model(model) => {
             if *params != PipelineParams::default() {
@@ -65,12 +122,12 @@ pub(crate) fn model_from_opened(
                     path.display()
                 );
             }
-            Ok(*model)
+            Ok((*model, RigSource::RigFile))
         }
         Opened::Face { mesh, obj_source } => {
             // On stdout: stderr holds only warnings and the one error line (issue 36).
-            println!("{} is a face mesh: computing its rig first", path.display());
-            compute(&mesh, obj_source, params)
+            outln!("{} is a face mesh: computing its rig first", path.display());
+            compute(&mesh, obj_source, params, no_cache)
         }
     }
 }
@@ -143,6 +200,7 @@ pub(crate) fn rig(
     solver: &SolverArgs,
     force: bool,
 ) -> Result<()> {
+    let started = std::time::Instant::now();
     let mut params = pipeline_params(solver)?;
     let inputs: Vec<&Path> = std::iter::once(face).chain(muscles).collect();
     facebem::check_output(output, &inputs, &["rig"], "a rig file")?;
@@ -162,9 +220,19 @@ pub(crate) fn rig(
         .with_context(|| format!("muscle file {}", file.display()))?;
         params.muscles = Some(list);
     }
-    let model = compute(&mesh, obj_source, &params)?;
+    let (model, source) = compute(&mesh, obj_source, &params, solver.no_cache)?;
     check_trust(&model, force)?;
     cache::save(output, &model)?;
+    if crate::json::mode() {
+        let mut report = crate::json::model_report(&model);
+        report["command"] = "rig".into();
+        report["input"] = serde_json::json!(face);
+        report["output"] = serde_json::json!(output);
+        report["rigSource"] = source.json();
+        report["seconds"]["total"] = started.elapsed().as_secs_f64().into();
+        crate::json::print(&report);
+        return Ok(());
+    }
     let r = &model.report;
     for w in r.warnings() {
         eprintln!("warning: {w}");
@@ -173,7 +241,7 @@ pub(crate) fn rig(
         .simplify_path
         .map(|p| format!(", simplified {}", p.describe()))
         .unwrap_or_default();
-    println!(
+    outln!(
         "{}: {} front triangles ({} simulated{simplified}), {} shell elements, {} muscles; prep {:.2} s, solve {:.2} s",
         output.display(),
         r.input_triangles,
@@ -194,12 +262,16 @@ pub(crate) fn info(file: &Path) -> Result<()> {
             Ok(rig) => (rig, mesh, None),
             Err(e) => {
                 // Still describe what was found, then the error.
-                print!("{}", facebem::report::describe::describe_loops(file, mesh));
+                out!("{}", facebem::report::describe::describe_loops(file, mesh));
                 return Err(e.into());
             }
         },
     };
-    print!(
+    if crate::json::mode() {
+        crate::json::print(&crate::json::info_report(file, mesh, &rig, model));
+        return Ok(());
+    }
+    out!(
         "{}",
         facebem::report::describe::describe(file, mesh, &rig, model)
     );
@@ -214,6 +286,6 @@ pub(crate) fn muscles(face: &Path, output: &Path) -> Result<()> {
     };
     face_prep::muscle_file::save(output, &rig.muscles)
         .with_context(|| format!("cannot write {}", output.display()))?;
-    println!("{}: {} muscles", output.display(), rig.muscles.len());
+    outln!("{}: {} muscles", output.display(), rig.muscles.len());
     Ok(())
 }

@@ -15,7 +15,7 @@ pub(crate) fn sheet(args: &SheetArgs) -> Result<()> {
         &["png"],
         "a contact sheet (PNG)",
     )?;
-    let model = model_from(&args.rig, &params)?;
+    let model = model_from(&args.rig, &params, args.solver.no_cache)?;
     let selection = match args.only.as_deref() {
         Some("muscles") => Selection::Muscles,
         Some("presets") => Selection::Presets,
@@ -35,7 +35,7 @@ pub(crate) fn sheet(args: &SheetArgs) -> Result<()> {
         );
         if !left_out.is_empty() {
             let names: Vec<&str> = left_out.iter().map(|(e, _)| e.name).collect();
-            println!(
+            outln!(
                 "{} names left out (their controls are not in this rig): {}",
                 set.display_name(),
                 names.join(" ")
@@ -68,7 +68,7 @@ pub(crate) fn sheet(args: &SheetArgs) -> Result<()> {
     let start = std::time::Instant::now();
     let image = contact_sheet::render(&model, &cells, &opts)?;
     contact_sheet::write_png(&args.output, &image)?;
-    println!(
+    outln!(
         "{}: {} cells, {} x {} px, drawn and written in {:.2} s",
         args.output.display(),
         cells.len(),

@@ -292,3 +292,43 @@ fn new_files_get_the_umask_mode_and_replaced_files_keep_theirs() {
         assert!(!name.to_string_lossy().ends_with(".tmp"), "{name:?}");
     }
 }
+
+/// Regression (found piping `facebem export face.obj --gltf f.glb | head -1`): a reader that
+/// closes stdout early made `println!` panic ("failed printing to stdout: Broken pipe", exit
+/// 101). Now the report stops and the command goes on: success, the file written in full.
+/// Writing to a full stdout (/dev/full) is one line and exit code 1.
+#[test]
+fn a_closed_or_full_stdout_is_no_panic() {
+    let dir = tempfile::tempdir().unwrap();
+    let glb = dir.path().join("f.glb");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_facebem"))
+        .arg("export")
+        .arg(face())
+        .arg("--gltf")
+        .arg(&glb)
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    drop(child.stdout.take());
+    let out = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{:?}: {stderr}", out.status);
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert_eq!(&std::fs::read(&glb).unwrap()[..4], b"glTF");
+
+    let Ok(dev_full) = std::fs::File::create("/dev/full") else {
+        eprintln!("SKIPPED the full-stdout half: this machine has no /dev/full");
+        return;
+    };
+    let full = Command::new(env!("CARGO_BIN_EXE_facebem"))
+        .arg("info")
+        .arg(face())
+        .stdout(dev_full)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&full.stderr);
+    assert_eq!(full.status.code(), Some(1), "{stderr}");
+    assert_eq!(stderr.trim_end().lines().count(), 1, "{stderr}");
+    assert!(stderr.starts_with("error: writing to stdout"), "{stderr}");
+}

@@ -112,11 +112,11 @@ pub fn write_export(kind: ExportKind, request: &ExportRequest) -> Result<PathBuf
         ExportKind::Gltf => {
             let path = path_for(".glb");
             let params = facebem::export::GltfParams::default();
-            match request.model.as_deref() {
+            let _summary = match request.model.as_deref() {
                 // The user's vertex layout, metres, attribution.
                 Some(model) => model.write_gltf(&path, &params)?,
                 None => facebem::export::write_gltf(&path, &request.basis, &params)?,
-            }
+            };
             path
         }
         ExportKind::MuscleFile => {

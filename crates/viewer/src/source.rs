@@ -5,7 +5,6 @@ use std::path::{Path, PathBuf};
 
 use face_prep::FaceMesh;
 use facebem::MuscleBasis;
-use facebem::PipelineParams;
 use facebem::input::OpenError;
 use facebem::{Progress, Stage};
 
@@ -33,20 +32,9 @@ pub fn load_neutral(path: &Path) -> Result<MuscleBasis, Box<OpenError>> {
     Ok(preview_basis(&mesh))
 }
 
-/// Where the viewer caches the model of `mesh` computed with `params`: one file per mesh and
-/// parameter set, `<dir>/<mesh hash>-<params hash>.rig` (so editing parameters and going back
-/// reloads instantly). `dir` defaults to [`facebem::input::default_cache_dir`]
-/// (`$XDG_CACHE_HOME/facebem` or `~/.cache/facebem`).
-pub fn cache_file_for(dir: &Path, mesh: &FaceMesh, params: &PipelineParams) -> PathBuf {
-    let hex = |bytes: &[u8]| bytes.iter().map(|b| format!("{b:02x}")).collect::<String>();
-    let mesh_hash = facebem::cache::mesh_hash(mesh);
-    let params_hash = facebem::cache::params_hash(params);
-    dir.join(format!(
-        "{}-{}.rig",
-        hex(&mesh_hash[..12]),
-        hex(&params_hash[..6])
-    ))
-}
+/// Where the viewer caches the model of `mesh` computed with `params` (shared with the command
+/// line): [`facebem::input::cache_file_for`].
+pub use facebem::input::cache_file_for;
 
 /// One 0…1 progress value over all pipeline stages, weighted by their typical share of the time
 /// (assembly and LU dominate).
@@ -104,7 +92,7 @@ mod tests {
     fn cache_file_name_depends_on_mesh_and_parameters() {
         let (mesh, _) = facebem::input::read_face(&default_face_path()).unwrap();
         let dir = Path::new("/cache");
-        let p = PipelineParams::default();
+        let p = facebem::PipelineParams::default();
         let a = cache_file_for(dir, &mesh, &p);
         assert_eq!(a, cache_file_for(dir, &mesh, &p));
         let mut q = p.clone();

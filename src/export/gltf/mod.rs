@@ -31,7 +31,12 @@
 //! facebem's own names are not exported).
 
 mod buffer;
+mod meshopt;
+mod primitives;
+mod summary;
 mod targets;
+
+pub use summary::{GltfSummary, build_gltf};
 
 use glam::DVec3;
 use serde_json::{Map, Value, json};
@@ -135,6 +140,15 @@ pub struct GltfParams {
     pub asset_extras: Map<String, Value>,
     /// How the ARKit targets are spelled.
     pub arkit_naming: ArkitNaming,
+    /// Compress every buffer view with `EXT_meshopt_compression` (then a required extension:
+    /// three.js needs its `MeshoptDecoder`); a neutral coordinate is kept to 2⁻¹⁹ of the
+    /// largest on its axis (0.6 µm on a 0.3 m head), a target's deltas to 2⁻¹⁵ of its largest,
+    /// normals to 2⁻¹¹.
+    pub compress: bool,
+    /// The user's OBJ materials ([`crate::export::material::ObjMaterials::load`]): one
+    /// primitive per material with its colour and embedded texture; `None` (or none used):
+    /// one primitive with [`MATERIAL_NAME`].
+    pub materials: Option<crate::export::material::ObjMaterials>,
 }
 
 impl Default for GltfParams {
@@ -144,11 +158,13 @@ impl Default for GltfParams {
             animation: false,
             seconds_per_keyframe: 1.0,
             presets: crate::expressions::presets::ALL.to_vec(),
-            names: NameSets::ALL,
+            names: NameSets::USERS,
             metres_per_unit: 1.0,
             copyright: None,
             asset_extras: Map::new(),
             arkit_naming: ArkitNaming::Swift,
+            compress: false,
+            materials: None,
         }
     }
 }
@@ -207,6 +223,9 @@ pub enum GltfExportError {
     /// Two morph targets would have the same name (e.g. a muscle file naming two muscles alike).
     #[error("two morph targets are named {0:?}")]
     DuplicateTarget(String),
+    /// meshoptimizer refused to encode a buffer view (`--compress`).
+    #[error("compressing the glTF failed: {0}")]
+    Compress(String),
     /// The morph targets would make the file larger than [`MAX_EXPORT_BYTES`].
     #[error(
         "the glTF would be about {} MiB ({targets} morph targets x {vertices} vertices), over the {} MiB limit; export fewer names (--names arkit) or simplify the face mesh",
@@ -259,14 +278,20 @@ pub fn export_gltf_layout(
 ) -> Result<Vec<u8>, GltfExportError> {
     check(basis, layout, params)?;
     let scale = params.metres_per_unit;
-    let mut b = Builder::default();
+    let mut b = Builder {
+        compress: params.compress,
+        ..Builder::default()
+    };
     let neutral_normals = vertex_normals(&basis.neutral, &basis.triangles);
-    let (attributes, indices) = neutral_accessors(&mut b, basis, layout, &neutral_normals, scale)?;
+    let attributes = neutral_accessors(&mut b, basis, layout, &neutral_normals, scale)?;
+    let looks = primitives::looks(&mut b, layout, params, &attributes);
     let MorphTargets {
         targets,
         clip_targets,
         partial,
         left_out,
+        same_as,
+        negative_of,
     } = morph_targets(basis, params)?;
     // A POSITION and a NORMAL delta (3 f32 each) per vertex per target, plus the neutral
     // attributes and the indices.
@@ -283,17 +308,32 @@ pub fn export_gltf_layout(
     }
     let target_json = target_accessors(&mut b, basis, layout, &targets, &neutral_normals, scale)?;
     let names: Vec<&str> = targets.iter().map(|(n, _)| n.as_str()).collect();
-    let extras = mesh_extras(&names, left_out, partial, layout);
-    let mut root = root_json(asset_json(params), attributes, indices, extras);
+    let mut extras = mesh_extras(&names, left_out, partial, layout);
+    if !same_as.is_empty() {
+        extras["sameAs"] = Value::Object(same_as);
+    }
+    if !negative_of.is_empty() {
+        extras["negativeOf"] = Value::Object(negative_of);
+    }
+    if !looks.warnings.is_empty() {
+        extras["materialWarnings"] = json!(looks.warnings);
+    }
+    let mut root = root_json(asset_json(params), looks, extras);
     // glTF requires at least one target when `targets` is present.
     if !targets.is_empty() {
-        root["meshes"][0]["primitives"][0]["targets"] = Value::Array(target_json);
+        for primitive in root["meshes"][0]["primitives"]
+            .as_array_mut()
+            .into_iter()
+            .flatten()
+        {
+            primitive["targets"] = Value::Array(target_json.clone());
+        }
         root["meshes"][0]["weights"] = json!(vec![0.0; targets.len()]);
     }
     if params.animation && !clip_targets.is_empty() {
         root["animations"] = animations(&mut b, params, &clip_targets, targets.len())?;
     }
-    Ok(finish(b, root, params.format))
+    finish(b, root, params.format)
 }
 
 /// How far from the vertex it takes, as a fraction of the face's bounding-box diagonal, a line
@@ -301,15 +341,15 @@ pub fn export_gltf_layout(
 /// line's two sides ([`face_prep::frame::contact::SEPARATION_REL`]).
 pub const FOLLOWER_REL: f64 = 100.0 * face_prep::frame::contact::SEPARATION_REL;
 
-/// Writes the neutral face's accessors (positions, normals, texture coordinates, indices);
-/// returns the primitive's `attributes` and its indices accessor.
+/// Writes the neutral face's accessors (positions, normals, texture coordinates); returns the
+/// primitives' `attributes`.
 fn neutral_accessors(
     b: &mut Builder,
     basis: &MuscleBasis,
     layout: &ExportLayout,
     neutral_normals: &[DVec3],
     scale: f64,
-) -> Result<(Value, usize), GltfExportError> {
+) -> Result<Value, GltfExportError> {
     // A line drawn away from the vertex it takes (a mouth bag's line following its lip,
     // `face_prep::frame::contact::bag`) keeps its own position; one at its vertex (to within
     // the 2 µm of a cut line's sides) gets the vertex's.
@@ -333,14 +373,13 @@ fn neutral_accessors(
             given.or(computed).unwrap_or(DVec3::Z)
         })
         .collect();
-    let position = b.vec3_accessor("neutral", &positions, true)?;
-    let normal = b.vec3_accessor("neutral normals", &normals, false)?;
+    let position = b.vec3_accessor("neutral", &positions, true, buffer::POSITION_BITS)?;
+    let normal = b.vec3_accessor("neutral normals", &normals, false, buffer::NORMAL_BITS)?;
     let mut attributes = json!({ "POSITION": position, "NORMAL": normal });
     if let Some(uvs) = &layout.uvs {
         attributes["TEXCOORD_0"] = json!(b.vec2_accessor("texture coordinates", uvs)?);
     }
-    let indices = b.indices_accessor(&layout.triangles);
-    Ok((attributes, indices))
+    Ok(attributes)
 }
 
 /// `mesh.extras`: the target names, the left-out and partial targets, the seam copies.
@@ -378,36 +417,28 @@ fn asset_json(params: &GltfParams) -> Value {
     asset
 }
 
-/// The document's root: one scene, node, material and mesh with one primitive. The node and
-/// the mesh are named `face`, the scene `facebem`: three.js names its objects after them and
-/// makes a repeated name unique (`face_1`), so with the scene also named `face`,
+/// The document's root: one scene, node and mesh; the primitives and materials of `looks`.
+/// The node and the mesh are named `face`, the scene `facebem`: three.js names its objects after
+/// them and makes a repeated name unique (`face_1`), so with the scene also named `face`,
 /// `getObjectByName('face')` found the scene instead of the mesh (issue 34).
-fn root_json(asset: Value, attributes: Value, indices: usize, extras: Value) -> Value {
-    json!({
+fn root_json(asset: Value, looks: primitives::Looks, extras: Value) -> Value {
+    let mut root = json!({
         "asset": asset,
         "scene": 0,
         "scenes": [{ "name": "facebem", "nodes": [0] }],
         "nodes": [{ "name": "face", "mesh": 0 }],
-        "materials": [{
-            "name": MATERIAL_NAME,
-            "pbrMetallicRoughness": {
-                "baseColorFactor": SKIN_LINEAR_RGBA,
-                "metallicFactor": 0.0,
-                "roughnessFactor": 0.6,
-            },
-            "doubleSided": true,
-        }],
+        "materials": looks.materials,
         "meshes": [{
             "name": "face",
-            "primitives": [{
-                "attributes": attributes,
-                "indices": indices,
-                "material": 0,
-                "mode": 4,
-            }],
+            "primitives": looks.primitives,
             "extras": extras,
         }],
-    })
+    });
+    if !looks.images.is_empty() {
+        root["images"] = json!(looks.images);
+        root["textures"] = json!(looks.textures);
+    }
+    root
 }
 
 /// One clip per preset (`clip_targets`: clip name, target index among `target_count`):
@@ -435,36 +466,47 @@ fn animations(
     Ok(Value::Array(clips))
 }
 
-/// Pads the buffer, adds the buffer views, accessors and buffer to `root` and writes the file
-/// in `format`.
-fn finish(b: Builder, mut root: Value, format: GltfFormat) -> Vec<u8> {
+/// Pads the buffer, adds the buffer views, accessors and buffer to `root` (compressed with
+/// [`meshopt`] when the builder says so) and writes the file in `format`.
+fn finish(b: Builder, mut root: Value, format: GltfFormat) -> Result<Vec<u8>, GltfExportError> {
     let Builder {
         mut bin,
-        views,
+        mut views,
         accessors,
+        codecs,
+        compress,
     } = b;
     while !bin.len().is_multiple_of(4) {
         bin.push(0);
     }
+    let mut buffers = Vec::new();
+    if compress {
+        let packed = meshopt::compress_views(&bin, &mut views, &codecs)?;
+        // The uncompressed views' buffer holds no data: decoders fill it.
+        buffers.push(json!({
+            "byteLength": bin.len(),
+            "extensions": { "EXT_meshopt_compression": { "fallback": true } },
+        }));
+        bin = packed;
+        root["extensionsUsed"] = json!(["EXT_meshopt_compression"]);
+        root["extensionsRequired"] = json!(["EXT_meshopt_compression"]);
+    }
     root["bufferViews"] = Value::Array(views);
     root["accessors"] = Value::Array(accessors);
-    match format {
-        GltfFormat::Binary => {
-            root["buffers"] = json!([{ "byteLength": bin.len() }]);
-            glb(&root, &bin)
-        }
-        GltfFormat::Embedded => {
-            root["buffers"] = json!([{
-                "byteLength": bin.len(),
-                "uri": format!("data:application/octet-stream;base64,{}", base64(&bin)),
-            }]);
-            serde_json::to_vec_pretty(&root).unwrap_or_default()
-        }
+    let mut data = json!({ "byteLength": bin.len() });
+    if format == GltfFormat::Embedded {
+        data["uri"] = json!(format!(
+            "data:application/octet-stream;base64,{}",
+            base64(&bin)
+        ));
     }
+    buffers.insert(0, data);
+    root["buffers"] = Value::Array(buffers);
+    Ok(match format {
+        GltfFormat::Binary => glb(&root, &bin),
+        GltfFormat::Embedded => serde_json::to_vec_pretty(&root).unwrap_or_default(),
+    })
 }
-
-/// Base colour of [`MATERIAL_NAME`]: a light skin tone, sRGB (224, 172, 150) in linear RGB.
-const SKIN_LINEAR_RGBA: [f32; 4] = [0.745, 0.412, 0.305, 1.0];
 
 /// Checks the basis, the layout and the parameters before anything is built.
 fn check(
@@ -550,72 +592,4 @@ pub fn vertex_normals(positions: &[DVec3], triangles: &[[u32; 3]]) -> Vec<DVec3>
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn bad_inputs_are_typed_errors() {
-        let mut basis = MuscleBasis {
-            muscle_ids: vec!["m".into()],
-            neutral: vec![DVec3::ZERO, DVec3::X, DVec3::Y],
-            triangles: vec![[0, 1, 3]],
-            displacements: vec![vec![DVec3::ZERO; 3]],
-        };
-        let p = GltfParams::default();
-        assert!(matches!(
-            export_gltf(&basis, &p),
-            Err(GltfExportError::IndexOutOfRange { vertex: 3, .. })
-        ));
-        basis.triangles = vec![[0, 1, 2]];
-        basis.displacements[0].pop();
-        assert!(matches!(
-            export_gltf(&basis, &p),
-            Err(GltfExportError::FieldLength { got: 2, .. })
-        ));
-        basis.displacements[0].push(DVec3::new(f64::MAX, 0.0, 0.0));
-        assert!(matches!(
-            export_gltf(&basis, &p),
-            Err(GltfExportError::NonFinite { vertex: 2, .. })
-        ));
-    }
-
-    /// Regression (issue 36, part 7): a 1.18 M-triangle face exported a 2.0 GB GLB using
-    /// 6.6 GB of memory. Above [`MAX_EXPORT_BYTES`] the export is refused from the counts,
-    /// before any target is built; here 37 muscles' 139 targets over 400 000 glTF vertices
-    /// (all but three of them positions no face uses, so the test itself stays small).
-    #[test]
-    fn an_export_over_the_size_limit_is_refused_before_building_it() {
-        let ids: Vec<String> = face_prep::MuscleKind::ALL
-            .iter()
-            .map(|k| k.id().to_string())
-            .collect();
-        let basis = MuscleBasis {
-            displacements: vec![vec![DVec3::ZERO; 3]; ids.len()],
-            muscle_ids: ids,
-            neutral: vec![DVec3::ZERO, DVec3::X, DVec3::Y],
-            triangles: vec![[0, 1, 2]],
-        };
-        let mut layout = ExportLayout::welded(&basis.neutral, &basis.triangles);
-        let unused = 400_000;
-        layout.welded.extend(std::iter::repeat_n(None, unused));
-        layout
-            .positions
-            .extend(std::iter::repeat_n(DVec3::Z, unused));
-        layout.input_index.extend(3..3 + unused as u32);
-        layout.input_count += unused;
-        match export_gltf_layout(&basis, &layout, &GltfParams::default()) {
-            Err(GltfExportError::TooLarge {
-                bytes,
-                targets,
-                vertices,
-            }) => {
-                assert_eq!(vertices, unused + 3);
-                assert!(targets > 100, "{targets}");
-                assert!(bytes > MAX_EXPORT_BYTES, "{bytes}");
-            }
-            other => panic!("{:?}", other.map(|b| b.len())),
-        }
-        // The same basis on its three vertices exports.
-        assert!(export_gltf(&basis, &GltfParams::default()).is_ok());
-    }
-}
+mod tests;

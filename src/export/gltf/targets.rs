@@ -4,7 +4,7 @@
 use glam::DVec3;
 use serde_json::{Map, Value, json};
 
-use super::buffer::Builder;
+use super::buffer::{Builder, DELTA_BITS, NORMAL_BITS};
 use super::{GltfExportError, GltfParams, vertex_normals};
 use crate::MuscleBasis;
 use crate::export::layout::ExportLayout;
@@ -20,6 +20,10 @@ pub(super) struct MorphTargets {
     pub(super) partial: Map<String, Value>,
     /// `mesh.extras.leftOutTargets`: names left out, with the reason.
     pub(super) left_out: Map<String, Value>,
+    /// `mesh.extras.sameAs`: targets left out because an earlier one is the same, by name.
+    pub(super) same_as: Map<String, Value>,
+    /// `mesh.extras.negativeOf`: targets left out because they are an earlier one times −1.
+    pub(super) negative_of: Map<String, Value>,
 }
 
 /// Welded position deltas of a pose (sliders in the basis's order) at weight 1.
@@ -42,6 +46,9 @@ pub(super) fn morph_targets(
 ) -> Result<MorphTargets, GltfExportError> {
     let mut targets: Vec<(String, Vec<DVec3>)> = Vec::new();
     let mut clip_targets: Vec<(String, usize)> = Vec::new();
+    // Whether a target is written even when it repeats another: every ARKit name, which tools
+    // look up one by one (jawRight is exactly −jawLeft on every rig).
+    let mut always: Vec<bool> = Vec::new();
     let (named, left_out) = expressions::for_rig(params.names, &basis.muscle_ids);
     let mut partial = Map::new();
     let spelled = |name: &str| params.arkit_naming.name(name);
@@ -54,6 +61,7 @@ pub(super) fn morph_targets(
             clip_targets.push((e.name.to_string(), targets.len()));
         }
         targets.push((spelled(e.name), field_of(basis, &r.resolved.sliders)));
+        always.push(e.set == NameSet::Arkit);
     }
     let mut left_out_json = Map::new();
     for (e, controls) in &left_out {
@@ -75,16 +83,105 @@ pub(super) fn morph_targets(
     if params.names.facebem {
         own_targets(basis, params, &mut targets, &mut clip_targets);
     }
+    always.resize(targets.len(), false);
     let mut seen = std::collections::HashSet::new();
     if let Some((name, _)) = targets.iter().find(|(name, _)| !seen.insert(name.as_str())) {
         return Err(GltfExportError::DuplicateTarget(name.clone()));
     }
+    let repeats = leave_out_repeats(targets, &always);
+    for name in &repeats.zero {
+        left_out_json.insert(
+            name.clone(),
+            json!("all zero: the base mesh is this expression"),
+        );
+    }
+    let clip_targets = clip_targets
+        .into_iter()
+        .filter_map(|(clip, t)| repeats.new_index[t].map(|t| (clip, t)))
+        .collect();
     Ok(MorphTargets {
-        targets,
+        targets: repeats.kept,
         clip_targets,
         partial,
         left_out: left_out_json,
+        same_as: repeats.same_as,
+        negative_of: repeats.negative_of,
     })
+}
+
+/// The targets that remain once every repeat is left out ([`leave_out_repeats`]).
+struct Repeats {
+    /// The targets written, in order.
+    kept: Vec<(String, Vec<DVec3>)>,
+    /// Per input target, its index among `kept` (the target it is the same as, for a left-out
+    /// copy); `None` for one left out as all zero or as a negative.
+    new_index: Vec<Option<usize>>,
+    /// Left-out copy → the earlier target it equals.
+    same_as: Map<String, Value>,
+    /// Left-out negative → the earlier target it is −1 times.
+    negative_of: Map<String, Value>,
+    /// Left out because every delta is zero.
+    zero: Vec<String>,
+}
+
+/// Leaves out each target (unless `always`) that is all zero, exactly equal to an earlier
+/// written one, or exactly −1 times one: in the default export `blinkLeft` is `eyeBlinkLeft`,
+/// and each muscle's `_relax` is `−_contract` (weight −1 on the kept target gives it). Found by
+/// hashing each field's bits (−0 taken as +0), then compared exactly.
+fn leave_out_repeats(targets: Vec<(String, Vec<DVec3>)>, always: &[bool]) -> Repeats {
+    use std::collections::HashMap;
+    use std::hash::{Hash, Hasher};
+    let hash_of = |field: &[DVec3], sign: f64| {
+        let mut h = std::collections::hash_map::DefaultHasher::new();
+        for d in field {
+            for c in d.to_array() {
+                // `+ 0.0` turns −0 into +0, so that equal fields hash alike.
+                (sign * c + 0.0).to_bits().hash(&mut h);
+            }
+        }
+        h.finish()
+    };
+    let mut out = Repeats {
+        kept: Vec::new(),
+        new_index: Vec::with_capacity(targets.len()),
+        same_as: Map::new(),
+        negative_of: Map::new(),
+        zero: Vec::new(),
+    };
+    let mut by_hash: HashMap<u64, Vec<usize>> = HashMap::new();
+    for (i, (name, field)) in targets.into_iter().enumerate() {
+        let keep = always.get(i).copied().unwrap_or(false);
+        let h = hash_of(&field, 1.0);
+        if !keep {
+            if field.iter().all(|d| *d == DVec3::ZERO) {
+                out.zero.push(name);
+                out.new_index.push(None);
+                continue;
+            }
+            let kept = &out.kept;
+            let find = |h: u64, sign: f64| {
+                by_hash.get(&h).and_then(|c| {
+                    c.iter()
+                        .copied()
+                        .find(|&j| kept[j].1.iter().zip(&field).all(|(a, b)| *a == sign * *b))
+                })
+            };
+            if let Some(j) = find(h, 1.0) {
+                out.same_as.insert(name, json!(kept[j].0));
+                out.new_index.push(Some(j));
+                continue;
+            }
+            if let Some(j) = find(hash_of(&field, -1.0), -1.0) {
+                out.negative_of.insert(name, json!(kept[j].0));
+                out.new_index.push(None);
+                continue;
+            }
+        }
+        by_hash.entry(h).or_default().push(out.kept.len());
+        out.new_index.push(Some(out.kept.len()));
+        out.kept.push((name, field));
+    }
+    out
 }
 
 /// Appends facebem's own targets: each muscle's contract and relax, then the presets (with
@@ -109,6 +206,12 @@ fn own_targets(
     }
 }
 
+/// Smallest NORMAL delta written: 2⁻¹⁵, one step of a 16-bit normalized normal (the finest
+/// normal `KHR_mesh_quantization` stores), a change no renderer shows. A target's far vertices
+/// move by a few nanometres and their normals by ~10⁻⁷; written as zero they need no bytes in a
+/// sparse accessor (positions are written exactly).
+pub const NORMAL_DELTA_RESOLUTION: f64 = 1.0 / 32768.0;
+
 /// Writes each target's POSITION and NORMAL delta accessors; returns the primitive's
 /// `targets` entries.
 pub(super) fn target_accessors(
@@ -130,10 +233,17 @@ pub(super) fn target_accessors(
         let normal_delta: Vec<DVec3> = vertex_normals(&posed, &basis.triangles)
             .iter()
             .zip(neutral_normals)
-            .map(|(a, b)| *a - *b)
+            .map(|(a, b)| {
+                let d = *a - *b;
+                if d.length() < NORMAL_DELTA_RESOLUTION {
+                    DVec3::ZERO
+                } else {
+                    d
+                }
+            })
             .collect();
-        let p = b.vec3_accessor(name, &gather(layout, delta, scale), true)?;
-        let nd = b.vec3_accessor(name, &gather(layout, &normal_delta, 1.0), false)?;
+        let p = b.delta_accessor(name, &gather(layout, delta, scale), DELTA_BITS)?;
+        let nd = b.delta_accessor(name, &gather(layout, &normal_delta, 1.0), NORMAL_BITS)?;
         target_json.push(json!({ "POSITION": p, "NORMAL": nd }));
     }
     Ok(target_json)

@@ -198,6 +198,8 @@ fn run(o: &Opts, exe: &Path, root: &Path, args: &[String]) -> Result<Run, String
         .arg(exe)
         .args(args)
         .current_dir(root.join("run"))
+        // The rig cache of faces the cases compute: the run's own, not the user's.
+        .env("XDG_CACHE_HOME", o.out.join("cache"))
         .stdin(Stdio::null())
         .stdout(stdout)
         .stderr(stderr)
