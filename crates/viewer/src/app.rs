@@ -21,8 +21,10 @@ use crate::posed_mesh::{MeshVertex, PosedMesh, bounding_sphere, edge_indices};
 use crate::renderer::{LineVertex, ReadBackError};
 
 mod box_drag;
+pub mod browser;
 mod dialogs;
 mod exports;
+mod history;
 mod jobs;
 mod panels;
 mod pose;
@@ -109,6 +111,12 @@ pub struct ViewerApp {
     sliders: Vec<f64>,
     /// The preset the sliders were last set to, until a slider moves.
     active_preset: Option<&'static str>,
+    /// Undo and redo of the sliders.
+    history: history::PoseHistory,
+    /// The named expressions mixed into the sliders, with their weights ([`browser`]).
+    mix: Vec<(&'static str, f64)>,
+    browser_tab: browser::BrowserTab,
+    browser_query: String,
     posed: PosedMesh,
     uploaded_vertices: Arc<Vec<MeshVertex>>,
     uploaded_generation: u64,
@@ -155,6 +163,10 @@ impl ViewerApp {
             next_topology_id: 1,
             sliders: Vec::new(),
             active_preset: None,
+            history: history::PoseHistory::default(),
+            mix: Vec::new(),
+            browser_tab: browser::BrowserTab::default(),
+            browser_query: String::new(),
             posed: PosedMesh::default(),
             uploaded_vertices: Arc::default(),
             uploaded_generation: 0,
@@ -221,6 +233,9 @@ impl ViewerApp {
         let edges = edge_indices(&basis.triangles);
         self.sliders = vec![0.0; basis.muscle_count()];
         self.active_preset = None;
+        self.mix.clear();
+        self.history = history::PoseHistory::default();
+        self.record_pose();
         if reframe && let Some((c, r)) = bounding_sphere(&basis.neutral) {
             self.camera = OrbitCamera::framing(c.as_vec3(), r as f32);
         }
@@ -378,6 +393,7 @@ impl ViewerApp {
         self.poll_jobs(&ctx);
         self.poll_dialog(&ctx);
         self.dropped_files(&ctx);
+        self.history_shortcuts(&ctx);
         egui::Panel::top("toolbar").show(ui, |ui| self.toolbar(ui));
         egui::Panel::bottom("status").show(ui, |ui| self.status_bar(ui));
         egui::Panel::left("controls")
@@ -385,6 +401,8 @@ impl ViewerApp {
             .show(ui, |ui| {
                 egui::ScrollArea::vertical().show(ui, |ui| {
                     self.sliders_ui(ui);
+                    ui.separator();
+                    self.browser_ui(ui);
                     ui.separator();
                     self.view_ui(ui);
                     ui.separator();
@@ -397,6 +415,10 @@ impl ViewerApp {
             .frame(egui::Frame::NONE)
             .show(ui, |ui| self.viewport(ui));
         self.automation(&ctx);
+        // A change is one undo step once no button is held (a whole drag is one step).
+        if !ctx.input(|i| i.pointer.any_down()) {
+            self.record_pose();
+        }
     }
 }
 

@@ -103,6 +103,8 @@ impl ViewerApp {
         });
         if changed {
             self.active_preset = preset_clicked;
+            // Muscles set by hand (or a preset) end the expression mix.
+            self.mix.clear();
             self.repose();
         }
     }

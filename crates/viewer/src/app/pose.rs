@@ -14,6 +14,7 @@ impl ViewerApp {
     /// re-blends the pose, as moving the sliders would.
     pub fn set_sliders(&mut self, values: &[f64]) {
         self.active_preset = None;
+        self.mix.clear();
         for (s, v) in self.sliders.iter_mut().zip(values) {
             *s = if v.is_finite() {
                 v.clamp(-1.0, 1.0)
@@ -22,6 +23,7 @@ impl ViewerApp {
             };
         }
         self.repose();
+        self.record_pose();
     }
 
     /// Applies the preset called `name`: a facebem preset ([`facebem::expressions::presets::find`]) or an
@@ -42,7 +44,9 @@ impl ViewerApp {
         };
         self.sliders = sliders;
         self.active_preset = Some(name);
+        self.mix.clear();
         self.repose();
+        self.record_pose();
         true
     }
 

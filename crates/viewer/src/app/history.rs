@@ -1,0 +1,128 @@
+//! Undo and redo of the pose (issue 35): each change of the sliders — a drag (one step however
+//! long), a typed value, a preset, a reset, an API call — is one step. Ctrl+Z undoes it,
+//! Ctrl+Shift+Z or Ctrl+Y redoes it (⌘ on macOS), unless a text field has the keyboard.
+//! Loading or rigging a face starts a new history.
+
+use eframe::egui;
+
+use super::ViewerApp;
+
+/// Steps kept; older ones are forgotten.
+pub const UNDO_DEPTH: usize = 256;
+
+/// The sliders and the preset they were set to.
+#[derive(Clone, Debug, PartialEq)]
+pub(super) struct PoseState {
+    sliders: Vec<f64>,
+    preset: Option<&'static str>,
+    mix: Vec<(&'static str, f64)>,
+}
+
+/// The states before (undo) and after (redo) the committed one.
+#[derive(Default)]
+pub(super) struct PoseHistory {
+    committed: Option<PoseState>,
+    undo: Vec<PoseState>,
+    redo: Vec<PoseState>,
+}
+
+impl ViewerApp {
+    /// The pose as a history state.
+    fn pose_state(&self) -> PoseState {
+        PoseState {
+            sliders: self.sliders.clone(),
+            preset: self.active_preset,
+            mix: self.mix.clone(),
+        }
+    }
+
+    /// Makes the current pose a step of the history when it differs from the last one (the UI
+    /// calls it once no pointer button is down, so a drag is one step).
+    pub(super) fn record_pose(&mut self) {
+        let now = self.pose_state();
+        let h = &mut self.history;
+        match &h.committed {
+            Some(c) if *c == now => {}
+            Some(c) if c.sliders.len() == now.sliders.len() => {
+                h.undo.push(c.clone());
+                if h.undo.len() > UNDO_DEPTH {
+                    h.undo.remove(0);
+                }
+                h.redo.clear();
+                h.committed = Some(now);
+            }
+            // Another face (other controls): a new history.
+            _ => {
+                *h = PoseHistory {
+                    committed: Some(now),
+                    ..PoseHistory::default()
+                }
+            }
+        }
+    }
+
+    /// Undoes the last pose change; false when there is none.
+    pub fn undo(&mut self) -> bool {
+        self.record_pose();
+        let Some(state) = self.history.undo.pop() else {
+            return false;
+        };
+        if let Some(c) = self.history.committed.replace(state.clone()) {
+            self.history.redo.push(c);
+        }
+        self.restore(state);
+        true
+    }
+
+    /// Redoes the last undone pose change; false when there is none.
+    pub fn redo(&mut self) -> bool {
+        self.record_pose();
+        let Some(state) = self.history.redo.pop() else {
+            return false;
+        };
+        if let Some(c) = self.history.committed.replace(state.clone()) {
+            self.history.undo.push(c);
+        }
+        self.restore(state);
+        true
+    }
+
+    /// Steps that can be undone and redone.
+    pub fn history_depth(&self) -> (usize, usize) {
+        (self.history.undo.len(), self.history.redo.len())
+    }
+
+    fn restore(&mut self, state: PoseState) {
+        self.sliders = state.sliders;
+        self.active_preset = state.preset;
+        self.mix = state.mix;
+        self.repose();
+    }
+
+    /// Ctrl+Z, Ctrl+Shift+Z and Ctrl+Y, when no text field has the keyboard.
+    pub(super) fn history_shortcuts(&mut self, ctx: &egui::Context) {
+        if ctx.memory(|m| m.focused().is_some()) {
+            return;
+        }
+        let shift = egui::Modifiers::COMMAND | egui::Modifiers::SHIFT;
+        let redo = ctx.input_mut(|i| {
+            i.consume_shortcut(&egui::KeyboardShortcut::new(shift, egui::Key::Z))
+                || i.consume_shortcut(&egui::KeyboardShortcut::new(
+                    egui::Modifiers::COMMAND,
+                    egui::Key::Y,
+                ))
+        });
+        let undo = !redo
+            && ctx.input_mut(|i| {
+                i.consume_shortcut(&egui::KeyboardShortcut::new(
+                    egui::Modifiers::COMMAND,
+                    egui::Key::Z,
+                ))
+            });
+        if redo {
+            self.redo();
+        } else if undo {
+            self.undo();
+        }
+    }
+}
