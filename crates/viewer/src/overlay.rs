@@ -7,8 +7,9 @@ use glam::{DAffine3, DVec3};
 
 use crate::renderer::LineVertex;
 
-/// Which overlays to draw.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// Which overlays to draw; none by default (issue 35: on a first look the muscle chains
+/// read as noise).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct OverlayOptions {
     /// Muscle chains with arrow heads (start → end, the pull direction of a contraction).
     pub muscles: bool,
@@ -19,17 +20,6 @@ pub struct OverlayOptions {
     /// Also show what lies behind the front face: back chains and the edges of the back and
     /// rim elements (drawn through the face).
     pub whole_shell: bool,
-}
-
-impl Default for OverlayOptions {
-    fn default() -> Self {
-        OverlayOptions {
-            muscles: true,
-            skull: false,
-            boxes: false,
-            whole_shell: false,
-        }
-    }
 }
 
 /// Ten base hues and their names; [`muscle_color`] cycles through them, then through lighter,

@@ -53,13 +53,14 @@ fn default_face_snapshots_neutral_happy_and_overlays() {
     harness.run();
     let options = SnapshotOptions::new().threshold(0.6).max_failed_pixels(40);
 
-    // Neutral, with the muscle overlay (on by default).
-    let with_muscles = harness.render().expect("wgpu render");
+    // Neutral (the muscle overlay is off by default), then with the muscle overlay.
+    let neutral = harness.render().expect("wgpu render");
     harness.snapshot_options("default_face_neutral", &options);
-
     harness.get_by_label("Muscles").click();
     harness.run();
-    let neutral = harness.render().expect("wgpu render");
+    let with_muscles = harness.render().expect("wgpu render");
+    harness.get_by_label("Muscles").click();
+    harness.run();
     let (w, h) = neutral.dimensions();
     let background = neutral.get_pixel(w - 4, h / 2).0;
     let total = viewport_pixels(&neutral).len();

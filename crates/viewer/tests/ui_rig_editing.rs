@@ -41,7 +41,10 @@ fn editing_muscles_saving_the_muscle_file_and_rebuilding_with_a_new_offset() {
         .count();
     assert_eq!(sel.muscles.len(), in_muscles);
 
-    // Add it to the target muscle (the first one), then remove it from every muscle.
+    // Add it to the target muscle (the first one), then remove it from every muscle; the
+    // muscle overlay (off by default) shows the edit.
+    harness.get_by_label("Muscles").click();
+    harness.run();
     let lines_before = harness.state().overlay_line_vertices().to_vec();
     harness.get_by_label("Add element to muscle").click();
     harness.run();

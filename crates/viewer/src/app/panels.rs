@@ -377,20 +377,17 @@ impl ViewerApp {
             )),
             (None, Some(r)) => {
                 // One bar over all stages (weighted by their typical share of the time), never
-                // going back, with the elapsed time and a linear estimate of the rest.
+                // going back, with the stage and the elapsed time. No estimate of the time
+                // left: the stages' weights are typical, not this face's, and a linear estimate
+                // from them stalled (issue 35: "about 25 s left" at 31 s, 90 % for 40 s).
                 r.shown_fraction = r.shown_fraction.max(r.job.control().fraction());
                 let f = r.shown_fraction;
                 let elapsed = r.started.elapsed().as_secs_f32();
-                let estimate = if f > 0.02 {
-                    format!(", about {} left", seconds_text(elapsed * (1.0 - f) / f))
-                } else {
-                    String::new()
-                };
                 Some((
                     r.job.label().to_owned(),
                     f,
                     format!(
-                        "{:.0} % · {} · {} elapsed{estimate}",
+                        "{:.0} % · {} · {} elapsed",
                         100.0 * f,
                         r.job.control().stage(),
                         seconds_text(elapsed)
@@ -414,10 +411,21 @@ impl ViewerApp {
         let mut cancel = false;
         ui.horizontal(|ui| {
             ui.label(label);
+            // Wide enough for its text (it was cut off).
+            let text_width = ui
+                .fonts_mut(|f| {
+                    f.layout_no_wrap(
+                        stage.clone(),
+                        egui::TextStyle::Body.resolve(ui.style()),
+                        egui::Color32::WHITE,
+                    )
+                })
+                .size()
+                .x;
             ui.add(
                 egui::ProgressBar::new(fraction)
                     .text(stage)
-                    .desired_width(260.0),
+                    .desired_width((text_width + 24.0).max(260.0)),
             );
             cancel = self.rigging.is_some() && ui.button("Cancel").clicked();
         });
