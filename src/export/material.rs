@@ -45,8 +45,9 @@ pub enum MaterialError {
 /// An embedded texture.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Texture {
-    /// The file's bytes.
-    pub bytes: Vec<u8>,
+    /// The file's bytes, shared: export parameters are cloned on their way to the writer, and
+    /// a texture may be 64 MiB.
+    pub bytes: std::sync::Arc<[u8]>,
     /// `image/png` or `image/jpeg`.
     pub mime: &'static str,
 }
@@ -193,7 +194,10 @@ impl ObjMaterials {
                 Ok(bytes) => match image_mime(&bytes) {
                     Some(mime) => {
                         self.files_read.push(path);
-                        texture = Some(Texture { bytes, mime });
+                        texture = Some(Texture {
+                            bytes: bytes.into(),
+                            mime,
+                        });
                     }
                     None => self.warnings.push(format!(
                         "texture {file} of material {name:?} is neither PNG nor JPEG (glTF's image formats); its colour is used"

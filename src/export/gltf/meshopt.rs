@@ -45,13 +45,12 @@ pub(super) fn compress_views(
         while !out.len().is_multiple_of(4) {
             out.push(0);
         }
-        if *codec == Codec::Raw {
+        let Some((encoded, stride, mode, filter)) = encode(bytes, *codec)? else {
             // Kept as it is, in the compressed buffer (the fallback buffer holds no data).
             view["byteOffset"] = json!(out.len());
             out.extend_from_slice(bytes);
             continue;
-        }
-        let (encoded, stride, mode, filter) = encode(bytes, *codec)?;
+        };
         let mut ext = json!({
             "buffer": 0,
             "byteOffset": out.len(),
@@ -75,10 +74,12 @@ pub(super) fn compress_views(
 
 type Encoded = (Vec<u8>, usize, &'static str, Option<&'static str>);
 
-/// One view's bytes encoded: (bytes, stride, mode, filter).
-fn encode(bytes: &[u8], codec: Codec) -> Result<Encoded, GltfExportError> {
+/// One view's bytes encoded: (bytes, stride, mode, filter); `None` for a view kept as it is
+/// ([`Codec::Raw`]).
+fn encode(bytes: &[u8], codec: Codec) -> Result<Option<Encoded>, GltfExportError> {
     let err = |e: meshopt::Error| GltfExportError::Compress(e.to_string());
-    Ok(match codec {
+    Ok(Some(match codec {
+        Codec::Raw => return Ok(None),
         Codec::Attributes { stride, exp_bits } => {
             let encoded = match (stride, exp_bits) {
                 (4, Some(bits)) => filtered::<1>(bytes, bits).map_err(err)?,
@@ -103,14 +104,13 @@ fn encode(bytes: &[u8], codec: Codec) -> Result<Encoded, GltfExportError> {
             let encoded = meshopt::encode_index_buffer(&indices, count).map_err(err)?;
             (encoded, stride, "TRIANGLES", None)
         }
-        Codec::Raw => (bytes.to_vec(), 1, "ATTRIBUTES", None),
         Codec::Indices { stride } => {
             let indices = indices_of(bytes, stride);
             let count = indices.iter().max().map_or(0, |m| *m as usize + 1);
             let encoded = meshopt::encode_index_sequence(&indices, count).map_err(err)?;
             (encoded, stride, "INDICES", None)
         }
-    })
+    }))
 }
 
 /// f32 elements of `N` components, through the EXPONENTIAL filter, then the attribute codec
