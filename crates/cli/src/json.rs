@@ -44,6 +44,25 @@ pub(crate) fn model_report(model: &FaceModel) -> Value {
     })
 }
 
+/// The report of a command that wrote `output` from `input` with `model`: [`model_report`],
+/// where the rig came from, and the command's whole time since `started`.
+pub(crate) fn command_report(
+    command: &str,
+    model: &FaceModel,
+    input: &Path,
+    output: &Path,
+    rig_source: Value,
+    started: std::time::Instant,
+) -> Value {
+    let mut report = model_report(model);
+    report["command"] = command.into();
+    report["input"] = json!(input);
+    report["output"] = json!(output);
+    report["rigSource"] = rig_source;
+    report["seconds"]["total"] = started.elapsed().as_secs_f64().into();
+    report
+}
+
 /// `info --json`: the file, its mesh, unit, loops, muscles, the ARKit and VRM names its
 /// controls make, and (for a rig file) [`model_report`].
 pub(crate) fn info_report(

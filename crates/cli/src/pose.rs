@@ -140,18 +140,14 @@ pub(crate) fn export(
         eprintln!("warning: {w}");
     }
     if crate::json::mode() {
-        let mut report = crate::json::model_report(&model);
-        report["command"] = "export".into();
-        report["input"] = serde_json::json!(rig);
-        report["output"] = serde_json::json!(gltf);
-        report["rigSource"] = source.json();
+        let mut report =
+            crate::json::command_report("export", &model, rig, gltf, source.json(), started);
         report["bytes"] = summary.bytes.into();
         report["compressed"] = compress.into();
         report["targets"] = serde_json::json!(summary.target_names);
         report["sameAs"] = serde_json::json!(summary.same_as);
         report["negativeOf"] = serde_json::json!(summary.negative_of);
         report["leftOut"] = serde_json::json!(summary.left_out);
-        report["seconds"]["total"] = started.elapsed().as_secs_f64().into();
         report["materialWarnings"] = serde_json::json!(warnings);
         crate::json::print(&report);
         return Ok(());

@@ -224,12 +224,8 @@ pub(crate) fn rig(
     check_trust(&model, force)?;
     cache::save(output, &model)?;
     if crate::json::mode() {
-        let mut report = crate::json::model_report(&model);
-        report["command"] = "rig".into();
-        report["input"] = serde_json::json!(face);
-        report["output"] = serde_json::json!(output);
-        report["rigSource"] = source.json();
-        report["seconds"]["total"] = started.elapsed().as_secs_f64().into();
+        let report =
+            crate::json::command_report("rig", &model, face, output, source.json(), started);
         crate::json::print(&report);
         return Ok(());
     }

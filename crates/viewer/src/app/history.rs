@@ -63,25 +63,28 @@ impl ViewerApp {
 
     /// Undoes the last pose change; false when there is none.
     pub fn undo(&mut self) -> bool {
-        self.record_pose();
-        let Some(state) = self.history.undo.pop() else {
-            return false;
-        };
-        if let Some(c) = self.history.committed.replace(state.clone()) {
-            self.history.redo.push(c);
-        }
-        self.restore(state);
-        true
+        self.step(true)
     }
 
     /// Redoes the last undone pose change; false when there is none.
     pub fn redo(&mut self) -> bool {
+        self.step(false)
+    }
+
+    /// One step back (from the undo stack to the redo stack) or forward.
+    fn step(&mut self, back: bool) -> bool {
         self.record_pose();
-        let Some(state) = self.history.redo.pop() else {
+        let h = &mut self.history;
+        let (from, to) = if back {
+            (&mut h.undo, &mut h.redo)
+        } else {
+            (&mut h.redo, &mut h.undo)
+        };
+        let Some(state) = from.pop() else {
             return false;
         };
-        if let Some(c) = self.history.committed.replace(state.clone()) {
-            self.history.undo.push(c);
+        if let Some(c) = h.committed.replace(state.clone()) {
+            to.push(c);
         }
         self.restore(state);
         true
