@@ -266,6 +266,7 @@ impl ExportLayout {
 ///     triangles: vec![[0, 1, 2]],
 ///     uvs: Some(vec![[0.0, 1.0], [1.0, 1.0], [0.0, 0.25]]),
 ///     normals: None,
+///     triangle_material: vec![None],
 /// };
 /// let text = facebem::export::layout::obj_text_of_gltf(&data);
 /// assert!(text.contains("vt 0 0.75\n"));

@@ -9,7 +9,7 @@ use eframe::egui;
 use face_prep::{Box2, FaceMesh};
 use facebem::Control;
 use facebem::MuscleBasis;
-use facebem::input::{CacheStatus, Opened};
+use facebem::input::CacheStatus;
 use facebem::{FaceModel, PipelineParams};
 
 use crate::camera::OrbitCamera;
@@ -19,6 +19,7 @@ use crate::overlay::{OverlayOptions, RigGeometry};
 use crate::picking::TriangleHit;
 use crate::posed_mesh::{MeshVertex, PosedMesh, bounding_sphere, edge_indices};
 use crate::renderer::{LineVertex, ReadBackError};
+use crate::surface::{Looks, Surface, SurfaceVertex};
 
 mod box_drag;
 pub mod browser;
@@ -29,10 +30,11 @@ mod jobs;
 mod panels;
 mod pose;
 mod rig_editing;
+pub mod timeline;
 mod viewport;
 
 pub use exports::{expand_home, home_relative};
-use jobs::{default_face_opened, file_name};
+use jobs::{OpenedFile, default_face_opened, open_file};
 pub use pose::preset_label;
 
 /// Viewport clear colour (display values, written as is).
@@ -64,8 +66,11 @@ struct Face {
     name: String,
     basis: MuscleBasis,
     topology_id: u64,
-    triangles: Arc<Vec<u32>>,
     edges: Arc<Vec<u32>>,
+    /// What the shaded view draws: the user's layout and materials.
+    surface: Arc<Surface>,
+    /// The neutral surface (compare mode's left half).
+    neutral_surface: Arc<Vec<SurfaceVertex>>,
     /// The mesh and its OBJ text, for (re)building the rig.
     source: Option<Arc<(FaceMesh, Option<String>)>>,
     /// The solved model, once available.
@@ -120,8 +125,20 @@ pub struct ViewerApp {
     posed: PosedMesh,
     uploaded_vertices: Arc<Vec<MeshVertex>>,
     uploaded_generation: u64,
+    /// The materials of the file opened last ([`crate::surface`]).
+    looks: Arc<Looks>,
+    /// The drawn surface's posed vertices and the (pose generation, heat) they were made for.
+    surface_vertices: Arc<Vec<SurfaceVertex>>,
+    surface_key: Option<(u64, bool)>,
+    /// Heat map of displacement over the surface.
+    heat: bool,
+    /// Neutral and posed side by side.
+    compare: bool,
+    timeline: timeline::Timeline,
     lines: Arc<Vec<LineVertex>>,
     lines_generation: u64,
+    /// The drawn muscle lines (user frame) and their names, for the name on hover.
+    muscle_paths: Vec<(String, Vec<glam::DVec3>)>,
     camera: OrbitCamera,
     shaded: bool,
     wireframe: bool,
@@ -129,7 +146,7 @@ pub struct ViewerApp {
     params: PipelineParams,
     open_path: String,
     message: Option<StatusMessage>,
-    loading: Option<Job<(String, Opened)>>,
+    loading: Option<Job<OpenedFile>>,
     rigging: Option<RigJob>,
     exporting: Option<Job<String>>,
     dialog: Option<dialogs::PendingDialog>,
@@ -170,8 +187,15 @@ impl ViewerApp {
             posed: PosedMesh::default(),
             uploaded_vertices: Arc::default(),
             uploaded_generation: 0,
+            looks: Arc::default(),
+            surface_vertices: Arc::default(),
+            surface_key: None,
+            heat: false,
+            compare: false,
+            timeline: timeline::Timeline::default(),
             lines: Arc::default(),
             lines_generation: 0,
+            muscle_paths: Vec::new(),
             camera: OrbitCamera::framing(glam::Vec3::ZERO, 1.0),
             shaded: true,
             wireframe: false,
@@ -201,11 +225,7 @@ impl ViewerApp {
         let opened = match start {
             Some(Some(path)) => {
                 app.open_path = path.display().to_string();
-                Some(
-                    facebem::input::open(&path)
-                        .map(|o| (file_name(&path), o))
-                        .map_err(|e| e.to_string()),
-                )
+                Some(open_file(&path))
             }
             Some(None) => Some(default_face_opened()),
             None => None,
@@ -221,6 +241,27 @@ impl ViewerApp {
         self.install_face(name.into(), basis, None, None, true);
     }
 
+    /// Displays `basis` (a face read from `source`: its mesh and OBJ text) without a rig, drawn
+    /// in the user's layout with `looks` (the viewer reads them itself when it opens a file;
+    /// benchmarks and scripts set them here).
+    pub fn set_face_with_looks(
+        &mut self,
+        name: impl Into<String>,
+        basis: MuscleBasis,
+        source: (FaceMesh, String),
+        looks: Looks,
+    ) {
+        self.looks = Arc::new(looks);
+        let (mesh, text) = source;
+        self.install_face(
+            name.into(),
+            basis,
+            Some(Arc::new((mesh, Some(text)))),
+            None,
+            true,
+        );
+    }
+
     fn install_face(
         &mut self,
         name: String,
@@ -229,13 +270,27 @@ impl ViewerApp {
         model: Option<Arc<FaceModel>>,
         reframe: bool,
     ) {
-        let triangles: Vec<u32> = basis.triangles.iter().flatten().copied().collect();
         let edges = edge_indices(&basis.triangles);
+        let text_source = source
+            .as_deref()
+            .and_then(|(mesh, text)| Some((mesh, text.as_deref()?)));
+        let surface = Surface::new(&basis, text_source, &self.looks, SKIN);
+        let mut neutral = PosedMesh::default();
+        let mut neutral_surface = Vec::new();
+        if neutral
+            .update(&basis, &vec![0.0; basis.muscle_count()])
+            .is_ok()
+        {
+            surface.fill(neutral.vertices(), None, &mut neutral_surface);
+        }
         self.sliders = vec![0.0; basis.muscle_count()];
         self.active_preset = None;
         self.mix.clear();
         self.history = history::PoseHistory::default();
         self.record_pose();
+        if (self.timeline.keys().first()).is_some_and(|k| k.sliders.len() != basis.muscle_count()) {
+            self.timeline = timeline::Timeline::default();
+        }
         if reframe && let Some((c, r)) = bounding_sphere(&basis.neutral) {
             self.camera = OrbitCamera::framing(c.as_vec3(), r as f32);
         }
@@ -247,13 +302,15 @@ impl ViewerApp {
             name,
             basis,
             topology_id: self.next_topology_id,
-            triangles: Arc::new(triangles),
             edges: Arc::new(edges),
+            surface: Arc::new(surface),
+            neutral_surface: Arc::new(neutral_surface),
             source,
             model,
             rig_geometry,
         });
         self.next_topology_id += 1;
+        self.surface_key = None;
         self.selection = None;
         if reframe {
             self.box_edit = None;
@@ -347,6 +404,26 @@ impl ViewerApp {
         &mut self.params
     }
 
+    /// Shows the heat map of displacement (mm) over the surface.
+    pub fn set_heat_map(&mut self, on: bool) {
+        self.heat = on;
+    }
+
+    /// Shows the neutral face beside the posed one.
+    pub fn set_compare(&mut self, on: bool) {
+        self.compare = on;
+    }
+
+    /// The drawn surface of the displayed face (layout, materials, textures).
+    pub fn surface(&self) -> Option<&Surface> {
+        self.face.as_ref().map(|f| &*f.surface)
+    }
+
+    /// The surface vertices handed to the renderer in the last frame.
+    pub fn surface_vertices(&self) -> &[SurfaceVertex] {
+        &self.surface_vertices
+    }
+
     /// Which overlays are drawn.
     pub fn set_overlays(&mut self, overlays: OverlayOptions) {
         self.overlays = overlays;
@@ -404,6 +481,8 @@ impl ViewerApp {
                     ui.separator();
                     self.browser_ui(ui);
                     ui.separator();
+                    self.timeline_ui(ui);
+                    ui.separator();
                     self.view_ui(ui);
                     ui.separator();
                     self.rig_ui(ui);
@@ -415,8 +494,10 @@ impl ViewerApp {
             .frame(egui::Frame::NONE)
             .show(ui, |ui| self.viewport(ui));
         self.automation(&ctx);
-        // A change is one undo step once no button is held (a whole drag is one step).
-        if !ctx.input(|i| i.pointer.any_down()) {
+        self.play_timeline(&ctx);
+        // A change is one undo step once no button is held (a whole drag is one step); a
+        // playing timeline is not a change of the user's.
+        if !ctx.input(|i| i.pointer.any_down()) && !self.timeline.playing() {
             self.record_pose();
         }
     }

@@ -24,5 +24,6 @@ pub mod picking;
 pub mod posed_mesh;
 pub mod renderer;
 pub mod source;
+pub mod surface;
 
 pub use app::{ViewerApp, ViewerOptions};

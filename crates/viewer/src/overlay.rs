@@ -11,7 +11,8 @@ use crate::renderer::LineVertex;
 /// read as noise).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct OverlayOptions {
-    /// Muscle chains with arrow heads (start → end, the pull direction of a contraction).
+    /// Muscles, each one smooth line along its element chain with an arrow head pointing the
+    /// way a contraction pulls the skin ([`muscle_path`]).
     pub muscles: bool,
     /// Outlines of the skull (fixed) elements.
     pub skull: bool,
@@ -130,36 +131,65 @@ fn scaled(c: [f32; 4], k: f32, alpha: f32) -> [f32; 4] {
     [c[0] * k, c[1] * k, c[2] * k, alpha]
 }
 
-fn chain_lines(
-    out: &mut Vec<LineVertex>,
-    rig: &FaceRig,
-    geo: &RigGeometry,
-    chain: &[u32],
-    color: [f32; 4],
-    alpha: f32,
-    view_normal: DVec3,
-) {
+/// Points of a drawn muscle line ([`muscle_path`]).
+pub const PATH_POINTS: usize = 12;
+
+/// The line drawn for a muscle chain: one smooth curve from the first element's centroid to the
+/// last one's (the chain runs the way a contraction pulls the skin, e.g. from the mouth corner
+/// toward the cheekbone for the zygomaticus major) instead of the zig-zag through every
+/// centroid.
+/// It is a Gaussian kernel regression of the centroids over their arc length (σ = 15 % of the
+/// length), corrected linearly so it starts and ends exactly at the chain's ends, sampled at
+/// [`PATH_POINTS`] evenly spaced arc lengths. Empty for a chain of fewer than two elements.
+pub fn muscle_path(rig: &FaceRig, geo: &RigGeometry, chain: &[u32]) -> Vec<DVec3> {
     let points: Vec<DVec3> = chain.iter().filter_map(|&e| geo.centroid(rig, e)).collect();
-    let n = points.len();
-    for (i, w) in points.windows(2).enumerate() {
-        // Darker at the start, full colour at the end: the direction of the pull.
-        let k = 0.4 + 0.6 * (i + 1) as f32 / n.max(2) as f32;
-        push_line(out, w[0], w[1], scaled(color, k, alpha));
+    let (Some(&first), Some(&last)) = (points.first(), points.last()) else {
+        return Vec::new();
+    };
+    if points.len() < 2 {
+        return Vec::new();
     }
-    if let [.., a, b] = points[..] {
+    let mut arc = vec![0.0];
+    for w in points.windows(2) {
+        arc.push(arc[arc.len() - 1] + w[0].distance(w[1]));
+    }
+    let length = arc[arc.len() - 1];
+    if length <= 0.0 {
+        return vec![first, last];
+    }
+    let sigma = 0.15 * length;
+    let regress = |t: f64| {
+        let (mut sum, mut weight) = (DVec3::ZERO, 0.0);
+        for (p, a) in points.iter().zip(&arc) {
+            let w = (-(a - t).powi(2) / (2.0 * sigma * sigma)).exp();
+            sum += w * *p;
+            weight += w;
+        }
+        sum / weight
+    };
+    let (g0, g1) = (regress(0.0), regress(length));
+    (0..PATH_POINTS)
+        .map(|i| {
+            let f = i as f64 / (PATH_POINTS - 1) as f64;
+            regress(f * length) + (first - g0) * (1.0 - f) + (last - g1) * f
+        })
+        .collect()
+}
+
+fn path_lines(out: &mut Vec<LineVertex>, path: &[DVec3], color: [f32; 4], view_normal: DVec3) {
+    for w in path.windows(2) {
+        push_line(out, w[0], w[1], color);
+    }
+    if let [.., a, b] = path[..] {
+        // An arrow head at the chain's end: the direction of the pull.
         let d = b - a;
         let len = d.length();
         if len > 0.0 {
             let dir = d / len;
             let side = view_normal.cross(dir).normalize_or_zero();
-            let head = 0.5 * len;
+            let head = 1.5 * len;
             for s in [-1.0, 1.0] {
-                push_line(
-                    out,
-                    b,
-                    b - head * dir + s * 0.5 * head * side,
-                    scaled(color, 1.0, alpha),
-                );
+                push_line(out, b, b - head * dir + s * 0.5 * head * side, color);
             }
         }
     }
@@ -221,9 +251,11 @@ pub fn overlay_lines(
     if options.muscles {
         for (i, m) in muscles.unwrap_or(&rig.muscles).iter().enumerate() {
             let color = muscle_color(i);
-            chain_lines(&mut out, rig, geo, &m.front_chain, color, 1.0, view_normal);
+            let front = muscle_path(rig, geo, &m.front_chain);
+            path_lines(&mut out, &front, color, view_normal);
             if options.whole_shell {
-                chain_lines(&mut out, rig, geo, &m.back_chain, color, 0.5, -view_normal);
+                let back = muscle_path(rig, geo, &m.back_chain);
+                path_lines(&mut out, &back, scaled(color, 1.0, 0.5), -view_normal);
             }
         }
     }
@@ -311,12 +343,12 @@ mod tests {
             None,
             None,
         );
-        // Per muscle: (chain length − 1) segments + 2 arrow-head strokes, 2 vertices each.
+        // Per muscle: (PATH_POINTS − 1) segments + 2 arrow-head strokes, 2 vertices each.
         let expected: usize = rig
             .muscles
             .iter()
             .filter(|m| m.front_chain.len() >= 2)
-            .map(|m| 2 * (m.front_chain.len() - 1 + 2))
+            .map(|_| 2 * (PATH_POINTS - 1 + 2))
             .sum();
         assert_eq!(muscles.len(), expected);
         // Edited muscles (not solved yet) are drawn instead of the rig's: here only the first.
@@ -331,7 +363,7 @@ mod tests {
             Some(&rig.muscles[..1]),
             None,
         );
-        assert_eq!(edited.len(), 2 * (rig.muscles[0].front_chain.len() - 1 + 2));
+        assert_eq!(edited.len(), 2 * (PATH_POINTS - 1 + 2));
         assert_eq!(edited[..], muscles[..edited.len()]);
         let boxes = overlay_lines(
             &rig,

@@ -11,6 +11,9 @@ use egui_wgpu::wgpu::util::DeviceExt;
 use crate::posed_mesh::MeshVertex;
 
 mod pipelines;
+mod surface_gpu;
+
+pub use surface_gpu::SurfaceFrame;
 
 /// Depth format of the offscreen pass.
 const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
@@ -33,7 +36,8 @@ pub struct SceneUniforms {
     pub clip_from_world: [[f32; 4]; 4],
     /// Eye position (w unused).
     pub eye: [f32; 4],
-    /// Surface colour.
+    /// Colour of the muscle-less preview's skin (kept for the layout; the surface's parts carry
+    /// their own colours).
     pub base_color: [f32; 4],
     /// Wireframe colour.
     pub wire_color: [f32; 4],
@@ -45,8 +49,6 @@ pub struct SceneUniforms {
 pub struct SceneFrame {
     /// Identity of the triangle/edge topology; changes when another face is loaded.
     pub topology_id: u64,
-    /// Triangle list indices.
-    pub triangles: Arc<Vec<u32>>,
     /// Line-list indices of the unique edges (wireframe).
     pub edges: Arc<Vec<u32>>,
     /// Generation of [`SceneFrame::vertices`] (see [`crate::posed_mesh::PosedMesh::generation`]).
@@ -57,9 +59,12 @@ pub struct SceneFrame {
     pub lines_generation: u64,
     /// Overlay line list.
     pub lines: Arc<Vec<LineVertex>>,
+    /// The shaded surface (user layout, materials, heat); with its neutral vertices the
+    /// viewport is split: neutral on the left, posed on the right, same camera.
+    pub surface: Option<SurfaceFrame>,
     /// Camera and colours.
     pub uniforms: SceneUniforms,
-    /// Draw filled, shaded triangles.
+    /// Draw the shaded surface.
     pub shaded: bool,
     /// Draw the wireframe.
     pub wireframe: bool,
@@ -121,7 +126,7 @@ impl GpuBuffer {
 /// GPU state kept in egui_wgpu's callback resources between frames.
 struct GpuScene {
     color_format: wgpu::TextureFormat,
-    mesh_pipeline: wgpu::RenderPipeline,
+    surface: surface_gpu::GpuSurface,
     wire_pipeline: wgpu::RenderPipeline,
     line_pipeline: wgpu::RenderPipeline,
     blit_pipeline: wgpu::RenderPipeline,
@@ -129,7 +134,6 @@ struct GpuScene {
     uniform_buffer: wgpu::Buffer,
     uniform_bind_group: wgpu::BindGroup,
     vertices: GpuBuffer,
-    triangles: GpuBuffer,
     edges: GpuBuffer,
     lines: GpuBuffer,
     uploaded: Option<(u64, u64, u64)>,
@@ -139,7 +143,11 @@ struct GpuScene {
 /// Creates the pipelines and registers them with egui_wgpu; call once from the app's
 /// constructor with `cc.wgpu_render_state`.
 pub fn install(render_state: &egui_wgpu::RenderState) {
-    let scene = GpuScene::new(&render_state.device, render_state.target_format);
+    let scene = GpuScene::new(
+        &render_state.device,
+        &render_state.queue,
+        render_state.target_format,
+    );
     render_state
         .renderer
         .write()
@@ -148,19 +156,29 @@ pub fn install(render_state: &egui_wgpu::RenderState) {
 }
 
 impl GpuScene {
-    fn new(device: &wgpu::Device, color_format: wgpu::TextureFormat) -> Self {
+    fn new(device: &wgpu::Device, queue: &wgpu::Queue, color_format: wgpu::TextureFormat) -> Self {
         let shader = device.create_shader_module(wgpu::include_wgsl!("viewport.wgsl"));
         let blit_shader = device.create_shader_module(wgpu::include_wgsl!("blit.wgsl"));
         let (uniform_layout, blit_layout) = pipelines::bind_group_layouts(device);
         let (scene_pl, blit_pl) =
             pipelines::pipeline_layouts(device, &uniform_layout, &blit_layout);
-        let [mesh_pipeline, wire_pipeline, line_pipeline] =
+        let [wire_pipeline, line_pipeline] =
             pipelines::scene_pipelines(device, &shader, &scene_pl, color_format);
+        let material_layout = pipelines::material_layout(device);
+        let surface_pipeline = pipelines::surface_pipeline(
+            device,
+            &shader,
+            &uniform_layout,
+            &material_layout,
+            color_format,
+        );
+        let surface =
+            surface_gpu::GpuSurface::new(device, queue, surface_pipeline, material_layout);
         let blit_pipeline = pipelines::blit_pipeline(device, &blit_shader, &blit_pl, color_format);
         let (uniform_buffer, uniform_bind_group) = pipelines::uniforms(device, &uniform_layout);
         GpuScene {
             color_format,
-            mesh_pipeline,
+            surface,
             wire_pipeline,
             line_pipeline,
             blit_pipeline,
@@ -168,7 +186,6 @@ impl GpuScene {
             uniform_buffer,
             uniform_bind_group,
             vertices: GpuBuffer::default(),
-            triangles: GpuBuffer::default(),
             edges: GpuBuffer::default(),
             lines: GpuBuffer::default(),
             uploaded: None,
@@ -234,9 +251,6 @@ impl GpuScene {
         let old = self.uploaded;
         if old.map(|o| o.0) != Some(key.0) {
             let usage = wgpu::BufferUsages::INDEX;
-            let tri = bytemuck::cast_slice(&frame.triangles);
-            self.triangles
-                .upload(device, queue, usage, tri, frame.triangles.len(), "tris");
             let edges = bytemuck::cast_slice(&frame.edges);
             self.edges
                 .upload(device, queue, usage, edges, frame.edges.len(), "edges");
@@ -255,6 +269,9 @@ impl GpuScene {
                 .upload(device, queue, usage, bytes, frame.lines.len(), "lines");
         }
         self.uploaded = Some(key);
+        if let Some(surface) = &frame.surface {
+            self.surface.upload(device, queue, surface);
+        }
         queue.write_buffer(&self.uniform_buffer, 0, bytemuck::bytes_of(&frame.uniforms));
     }
 
@@ -284,22 +301,29 @@ impl GpuScene {
             multiview_mask: None,
         });
         pass.set_bind_group(0, &self.uniform_bind_group, &[]);
-        let mesh_ready = self.vertices.len > 0;
-        if let (true, Some(vb)) = (mesh_ready, &self.vertices.buffer) {
+        let [w, h] = target.size.map(|s| s as f32);
+        let compare = frame.surface.as_ref().is_some_and(|s| s.neutral.is_some());
+        if compare {
+            // Neutral on the left half, posed on the right, one camera (its aspect is a half's).
+            pass.set_viewport(0.0, 0.0, (w / 2.0).floor(), h, 0.0, 1.0);
+            if frame.shaded {
+                self.surface.draw(&mut pass, true);
+            }
+            let x = (w / 2.0).floor();
+            pass.set_viewport(x, 0.0, w - x, h, 0.0, 1.0);
+        }
+        if frame.shaded && frame.surface.is_some() {
+            self.surface.draw(&mut pass, false);
+        }
+        if let (true, Some(vb), Some(eb)) = (
+            frame.wireframe && self.vertices.len > 0 && self.edges.len > 0,
+            &self.vertices.buffer,
+            &self.edges.buffer,
+        ) {
+            pass.set_pipeline(&self.wire_pipeline);
             pass.set_vertex_buffer(0, vb.slice(..));
-            if let (true, Some(ib)) = (
-                frame.shaded && self.triangles.len > 0,
-                &self.triangles.buffer,
-            ) {
-                pass.set_pipeline(&self.mesh_pipeline);
-                pass.set_index_buffer(ib.slice(..), wgpu::IndexFormat::Uint32);
-                pass.draw_indexed(0..self.triangles.len, 0, 0..1);
-            }
-            if let (true, Some(eb)) = (frame.wireframe && self.edges.len > 0, &self.edges.buffer) {
-                pass.set_pipeline(&self.wire_pipeline);
-                pass.set_index_buffer(eb.slice(..), wgpu::IndexFormat::Uint32);
-                pass.draw_indexed(0..self.edges.len, 0, 0..1);
-            }
+            pass.set_index_buffer(eb.slice(..), wgpu::IndexFormat::Uint32);
+            pass.draw_indexed(0..self.edges.len, 0, 0..1);
         }
         if let (true, Some(lb)) = (self.lines.len > 0, &self.lines.buffer) {
             pass.set_pipeline(&self.line_pipeline);

@@ -9,28 +9,46 @@ struct Uniforms {
 
 @group(0) @binding(0) var<uniform> u: Uniforms;
 
-struct MeshOut {
+// The surface: the user's layout, material (group 1) and heat colour.
+@group(1) @binding(0) var material_texture: texture_2d<f32>;
+@group(1) @binding(1) var material_sampler: sampler;
+@group(1) @binding(2) var<uniform> material_color: vec4<f32>;
+
+struct SurfaceOut {
     @builtin(position) clip: vec4<f32>,
     @location(0) normal: vec3<f32>,
     @location(1) world: vec3<f32>,
+    @location(2) uv: vec2<f32>,
+    @location(3) heat: vec4<f32>,
 };
 
 @vertex
-fn vs_mesh(@location(0) position: vec3<f32>, @location(1) normal: vec3<f32>) -> MeshOut {
-    var out: MeshOut;
+fn vs_surface(
+    @location(0) position: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) uv: vec2<f32>,
+    @location(3) heat: vec4<f32>,
+) -> SurfaceOut {
+    var out: SurfaceOut;
     out.clip = u.clip_from_world * vec4<f32>(position, 1.0);
     out.normal = normal;
     out.world = position;
+    out.uv = uv;
+    out.heat = heat;
     return out;
 }
 
 @fragment
-fn fs_mesh(in: MeshOut) -> @location(0) vec4<f32> {
-    // Two-sided Lambert with a head light, plus a little ambient.
+fn fs_surface(in: SurfaceOut) -> @location(0) vec4<f32> {
+    // Display values (see surface.rs): texel × factor, heat over it, then two-sided Lambert
+    // with a head light plus a little ambient.
+    let texel = textureSample(material_texture, material_sampler, in.uv);
+    // The heat colour is premultiplied by its opacity.
+    let albedo = texel.rgb * material_color.rgb * (1.0 - in.heat.a) + in.heat.rgb;
     let n = normalize(in.normal);
     let l = normalize(u.eye.xyz - in.world);
     let d = abs(dot(n, l));
-    return vec4<f32>(u.base_color.rgb * (0.22 + 0.78 * d), 1.0);
+    return vec4<f32>(albedo * (0.22 + 0.78 * d), 1.0);
 }
 
 @vertex

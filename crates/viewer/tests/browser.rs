@@ -99,3 +99,52 @@ fn the_browser_finds_mixes_and_poses_named_expressions() {
             .all(|e| e.unavailable.as_deref() == Some("not modelled: no eyeballs"))
     );
 }
+
+#[test]
+fn the_muscles_tab_lists_the_muscle_sliders_matching_the_search() {
+    common::test_env();
+    let basis = common::synthetic_default_basis();
+    let mut harness = common::harness_with(Some(basis.clone()));
+    harness
+        .get_by_label("Expressions: ARKit, VRM, presets")
+        .click();
+    harness.run();
+    // The tab (the overlay's checkbox has the same label).
+    harness
+        .get_all_by_label("Muscles")
+        .find(|n| n.accesskit_node().role() != Role::CheckBox)
+        .unwrap()
+        .click();
+    harness.run();
+    harness.get_by_label("Search").focus();
+    harness
+        .get_by_label("Search")
+        .type_text("zygomaticus major");
+    harness.run();
+    // Each muscle slider is listed twice now: in the muscle list and in the tab.
+    for name in ["Zygomaticus major L", "Zygomaticus major R"] {
+        let n = harness
+            .get_all_by_role(Role::Slider)
+            .filter(|s| s.accesskit_node().label().as_deref() == Some(name))
+            .count();
+        assert_eq!(n, 2, "{name}");
+    }
+    let frontalis = harness
+        .get_all_by_role(Role::Slider)
+        .filter(|s| s.accesskit_node().label().as_deref() == Some("Frontalis L"))
+        .count();
+    assert_eq!(frontalis, 1);
+    // Moving one in the tab moves that muscle (−1 … 1).
+    let k = basis
+        .muscle_ids
+        .iter()
+        .position(|id| id == "zygomaticus_major_r")
+        .unwrap();
+    harness
+        .get_all_by_role(Role::Slider)
+        .rfind(|s| s.accesskit_node().label().as_deref() == Some("Zygomaticus major R"))
+        .unwrap()
+        .set_value_accesskit(-0.7);
+    harness.run();
+    assert_eq!(harness.state().sliders()[k], -0.7);
+}

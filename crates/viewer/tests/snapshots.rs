@@ -59,6 +59,24 @@ fn default_face_snapshots_neutral_happy_and_overlays() {
     harness.get_by_label("Muscles").click();
     harness.run();
     let with_muscles = harness.render().expect("wgpu render");
+    // Hovering a muscle's line names it by the pointer (the zygomaticus major: a long line
+    // over the cheek).
+    let index = harness
+        .state()
+        .pending_muscles()
+        .unwrap()
+        .iter()
+        .position(|m| m.kind == Some(face_prep::MuscleKind::ZygomaticusMajorL))
+        .expect("the default rig has a left zygomaticus major");
+    let at = harness.state().muscle_line_point(index).expect("on screen");
+    harness.hover_at(at);
+    harness.run();
+    assert_eq!(
+        harness.state().muscle_at(at).as_deref(),
+        Some("Zygomaticus major L")
+    );
+    harness.snapshot_options("default_face_muscle_hover", &options);
+    harness.hover_at(egui::pos2(5.0, 700.0));
     harness.get_by_label("Muscles").click();
     harness.run();
     let (w, h) = neutral.dimensions();

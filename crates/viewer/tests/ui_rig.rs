@@ -340,9 +340,18 @@ fn the_face_is_drawn_at_once_exports_wait_for_the_rig_and_the_legend_names_every
     for label in ["Export OBJ pose", "Export glTF", "Save muscle file"] {
         assert!(!harness.get_by_label(label).accesskit_node().is_disabled());
     }
-    // With the muscle overlay on (off by default), the legend names every muscle of the rig
-    // with its colour.
+    // With the muscle overlay on (off by default), the legend (collapsed at first) names every
+    // muscle of the rig with its colour.
     harness.get_by_label("Muscles").click();
+    harness.run();
+    let header = format!("Muscle colours ({})", model.rig.muscles.len());
+    let first = model.rig.muscles[0]
+        .kind
+        .expect("a standard muscle")
+        .display_name();
+    let first = format!("{first}: {}", viewer::overlay::muscle_color_name(0));
+    assert!(harness.query_by_label(&first).is_none());
+    harness.get_by_label(&header).click();
     harness.run();
     assert!(!model.rig.muscles.is_empty());
     for (i, m) in model.rig.muscles.iter().enumerate() {

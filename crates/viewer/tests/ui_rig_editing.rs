@@ -74,6 +74,35 @@ fn editing_muscles_saving_the_muscle_file_and_rebuilding_with_a_new_offset() {
             .all(|m| !m.front_chain.contains(&element) && !m.back_chain.contains(&element))
     );
     assert!(harness.state().selection().unwrap().muscles.is_empty());
+    // Each edit is an undo step: back to the added element, back to the rig's muscles, and
+    // forward again to the removal.
+    let removed = pending.clone();
+    let added_only = {
+        let mut m = model.rig.muscles.clone();
+        if !m[0].front_chain.contains(&element) {
+            m[0].front_chain.push(element);
+        }
+        m
+    };
+    let z = egui::Key::Z;
+    harness.key_press_modifiers(egui::Modifiers::COMMAND, z);
+    harness.run();
+    let undone = harness.state().pending_muscles().unwrap().to_vec();
+    assert!(undone[0].front_chain.contains(&element));
+    assert_eq!(undone.len(), added_only.len());
+    harness.key_press_modifiers(egui::Modifiers::COMMAND, z);
+    harness.run();
+    assert_eq!(
+        harness.state().pending_muscles().unwrap(),
+        &model.rig.muscles[..]
+    );
+    let redo = egui::Modifiers::COMMAND | egui::Modifiers::SHIFT;
+    harness.key_press_modifiers(redo, z);
+    harness.run();
+    harness.key_press_modifiers(redo, z);
+    harness.run();
+    assert_eq!(harness.state().pending_muscles().unwrap(), &removed[..]);
+    assert!(harness.state().selection().unwrap().muscles.is_empty());
 
     // The muscle file holds the rig's muscles.
     harness.get_by_label("Save muscle file").click();
@@ -297,6 +326,16 @@ fn drag_the_mouth_box_bottom_edge_then_revert(
         yaw,
         "a box drag does not orbit"
     );
+    // The drag is one undo step, and redo brings it back.
+    harness.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::Z);
+    harness.run();
+    assert_eq!(harness.state_mut().box_edit_mut().unwrap()[3], b.mouth);
+    harness.key_press_modifiers(
+        egui::Modifiers::COMMAND | egui::Modifiers::SHIFT,
+        egui::Key::Z,
+    );
+    harness.run();
+    assert_eq!(harness.state_mut().box_edit_mut().unwrap()[3], dragged[3]);
     harness.get_by_label("Revert boxes").click();
     harness.run();
     assert_eq!(harness.state_mut().box_edit_mut().unwrap()[3], b.mouth);

@@ -372,6 +372,8 @@ pub struct GltfFaceData {
     pub uvs: Option<Vec<[f32; 2]>>,
     /// Unit NORMAL per position (world frame), if any primitive has it (`None` elsewhere).
     pub normals: Option<Vec<Option<DVec3>>>,
+    /// Per triangle: the glTF material of its primitive ([`crate::gltf_read::material_looks`]).
+    pub triangle_material: Vec<Option<u32>>,
 }
 
 /// Reads the first mesh of a glTF/GLB document (or the mesh named `mesh_name`) as the file has
@@ -391,6 +393,7 @@ pub fn gltf_face_data(
     let mut triangles = Vec::new();
     let mut uvs: Vec<Option<[f32; 2]>> = Vec::new();
     let mut normals: Vec<Option<DVec3>> = Vec::new();
+    let mut triangle_material = Vec::new();
     for (pi, (pos, indices, mode)) in gltf_read::primitives(&doc.root, mesh)
         .into_iter()
         .enumerate()
@@ -450,6 +453,10 @@ pub fn gltf_face_data(
             }
             triangles.push(t.map(|i| i + base));
         }
+        let material = (doc.root.meshes.get(mesh))
+            .and_then(|m| m.primitives.get(pi)?.material)
+            .map(|m| m.value() as u32);
+        triangle_material.resize(triangles.len(), material);
     }
     if world.determinant() < 0.0 {
         for t in &mut triangles {
@@ -464,6 +471,7 @@ pub fn gltf_face_data(
             .any(Option::is_some)
             .then(|| uvs.iter().map(|t| t.unwrap_or([0.0; 2])).collect()),
         normals: normals.iter().any(Option::is_some).then_some(normals),
+        triangle_material,
     })
 }
 

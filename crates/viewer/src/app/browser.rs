@@ -1,5 +1,5 @@
-//! The expression browser (issue 35): tabs for ARKit, VRM and facebem's presets, a search by
-//! name, and a 0…1 slider per expression. The sliders mix: the muscle sliders become the sum of
+//! The expression browser (issue 35): tabs for ARKit, VRM, facebem's presets and the muscles, a
+//! search by name, and a 0…1 slider per expression (−1…1 per muscle). The sliders mix: the muscle sliders become the sum of
 //! each expression's controls times its weight (clamped to −1…1), as glTF morph weights add.
 //! Names the rig cannot make are listed greyed, with the reason on hover. Moving a muscle slider
 //! by hand ends the mix.
@@ -19,11 +19,18 @@ pub enum BrowserTab {
     Vrm,
     /// facebem's FACS presets.
     Presets,
+    /// The rig's muscles (−1 … 1 each, the sliders above, searchable).
+    Muscles,
 }
 
 impl BrowserTab {
     /// Every tab, in order.
-    pub const ALL: [BrowserTab; 3] = [BrowserTab::Arkit, BrowserTab::Vrm, BrowserTab::Presets];
+    pub const ALL: [BrowserTab; 4] = [
+        BrowserTab::Arkit,
+        BrowserTab::Vrm,
+        BrowserTab::Presets,
+        BrowserTab::Muscles,
+    ];
 
     /// The tab's label.
     pub fn label(self) -> &'static str {
@@ -31,6 +38,7 @@ impl BrowserTab {
             BrowserTab::Arkit => "ARKit",
             BrowserTab::Vrm => "VRM",
             BrowserTab::Presets => "Presets",
+            BrowserTab::Muscles => "Muscles",
         }
     }
 }
@@ -62,8 +70,12 @@ pub fn browser_entries(tab: BrowserTab, query: &str, control_ids: &[String]) -> 
     let set = match tab {
         BrowserTab::Arkit => Some(NameSet::Arkit),
         BrowserTab::Vrm => Some(NameSet::Vrm),
-        BrowserTab::Presets => None,
+        BrowserTab::Presets | BrowserTab::Muscles => None,
     };
+    if tab == BrowserTab::Muscles {
+        // Not names of a standard: listed by the browser from the rig ([`muscle_entries`]).
+        return out;
+    }
     let Some(set) = set else {
         for p in presets::ALL.iter().filter(|p| p.name != "neutral") {
             if matches(p.name) {
@@ -177,6 +189,10 @@ impl ViewerApp {
             )
             .labelled_by(label.id);
         });
+        if self.browser_tab == BrowserTab::Muscles {
+            self.muscle_tab(ui);
+            return;
+        }
         let mut set = None;
         egui::ScrollArea::vertical()
             .id_salt("expression_browser")
@@ -220,6 +236,35 @@ impl ViewerApp {
                     self.repose();
                 }
             });
+        }
+    }
+}
+
+impl ViewerApp {
+    /// The Muscles tab: the muscle sliders (−1 … 1) whose name contains the search.
+    fn muscle_tab(&mut self, ui: &mut egui::Ui) {
+        let Some(face) = &self.face else { return };
+        let query = self.browser_query.trim().to_lowercase();
+        let names: Vec<(usize, String)> = (face.basis.muscle_ids.iter().enumerate())
+            .map(|(k, id)| (k, super::panels::slider_label(id)))
+            .filter(|(_, n)| n.to_lowercase().contains(&query))
+            .collect();
+        let mut changed = false;
+        egui::ScrollArea::vertical()
+            .id_salt("expression_browser_muscles")
+            .max_height(BROWSER_HEIGHT)
+            .show(ui, |ui| {
+                for (k, name) in names {
+                    if let Some(v) = self.sliders.get_mut(k) {
+                        let r = ui.add(egui::Slider::new(v, -1.0..=1.0).text(name));
+                        changed |= r.changed();
+                    }
+                }
+            });
+        if changed {
+            self.active_preset = None;
+            self.mix.clear();
+            self.repose();
         }
     }
 }

@@ -1,5 +1,7 @@
-//! Undo and redo of the pose (issue 35): each change of the sliders — a drag (one step however
-//! long), a typed value, a preset, a reset, an API call — is one step. Ctrl+Z undoes it,
+//! Undo and redo (issue 35) of the pose and of the rig edits: each change of the sliders — a
+//! drag (one step however long), a typed value, a preset, a reset, an API call — and each edit
+//! of the feature boxes (a drag, a typed corner, Reset) or of the muscles (an element added or
+//! removed, a muscle file loaded) is one step. Ctrl+Z undoes it,
 //! Ctrl+Shift+Z or Ctrl+Y redoes it (⌘ on macOS), unless a text field has the keyboard.
 //! Loading or rigging a face starts a new history.
 
@@ -10,12 +12,14 @@ use super::ViewerApp;
 /// Steps kept; older ones are forgotten.
 pub const UNDO_DEPTH: usize = 256;
 
-/// The sliders and the preset they were set to.
+/// The sliders and the preset they were set to, and the rig edits not solved yet.
 #[derive(Clone, Debug, PartialEq)]
 pub(super) struct PoseState {
     sliders: Vec<f64>,
     preset: Option<&'static str>,
     mix: Vec<(&'static str, f64)>,
+    boxes: Option<[face_prep::Box2; 4]>,
+    muscles: Option<Vec<face_prep::Muscle>>,
 }
 
 /// The states before (undo) and after (redo) the committed one.
@@ -33,6 +37,8 @@ impl ViewerApp {
             sliders: self.sliders.clone(),
             preset: self.active_preset,
             mix: self.mix.clone(),
+            boxes: self.box_edit,
+            muscles: self.params.muscles.clone(),
         }
     }
 
@@ -99,6 +105,19 @@ impl ViewerApp {
         self.sliders = state.sliders;
         self.active_preset = state.preset;
         self.mix = state.mix;
+        let edits_changed = self.box_edit != state.boxes || self.params.muscles != state.muscles;
+        self.box_edit = state.boxes;
+        self.params.muscles = state.muscles;
+        if edits_changed {
+            let element = self.selection.as_ref().and_then(|s| s.element);
+            let names = element
+                .zip(self.pending_muscles())
+                .map(|(e, muscles)| crate::overlay::muscles_of_element(muscles, e));
+            if let (Some(sel), Some(names)) = (&mut self.selection, names) {
+                sel.muscles = names;
+            }
+            self.refresh_overlays();
+        }
         self.repose();
     }
 

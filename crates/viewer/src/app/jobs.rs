@@ -24,9 +24,9 @@ impl ViewerApp {
             Some(ctx.clone()),
             move |ctl| {
                 ctl.report("reading", 0.0);
-                let opened = facebem::input::open(&path).map_err(|e| e.to_string())?;
+                let opened = open_file(&path);
                 ctl.report("read", 1.0);
-                Ok((file_name(&path), opened))
+                opened
             },
         );
         self.loading = Some(job);
@@ -125,9 +125,18 @@ impl ViewerApp {
 
     /// Shows what a file turned out to hold: a saved rig at once, a face as its preview with
     /// its rig computed (or loaded from the cache) in the background.
-    pub(super) fn opened(&mut self, ctx: &egui::Context, result: Result<(String, Opened), String>) {
-        match result {
-            Ok((name, Opened::Model(model))) => {
+    pub(super) fn opened(&mut self, ctx: &egui::Context, result: Result<OpenedFile, String>) {
+        let (name, opened) = match result {
+            Ok(file) => {
+                self.looks = Arc::new(file.looks);
+                (file.name, file.opened)
+            }
+            Err(e) => return self.error(format!("Could not open: {e}")),
+        };
+        let looks_warning = (self.looks.warnings.first())
+            .map(|w| format!("Opened {name}, drawn without part of its look: {w}"));
+        match opened {
+            Opened::Model(model) => {
                 let text = format!(
                     "Opened the saved rig {name} ({} triangles, {} muscles)",
                     model.basis.triangles.len(),
@@ -143,7 +152,7 @@ impl ViewerApp {
                 self.rigging = None;
                 self.set_model(name, *model);
             }
-            Ok((name, Opened::Face { mesh, obj_source })) => {
+            Opened::Face { mesh, obj_source } => {
                 self.info(format!(
                     "Opened {name} ({} triangles); computing its muscle rig…",
                     mesh.triangles.len()
@@ -154,7 +163,9 @@ impl ViewerApp {
                 self.install_face(name, basis, Some(source), None, true);
                 self.rebuild_rig(ctx);
             }
-            Err(e) => self.error(format!("Could not open: {e}")),
+        }
+        if let Some(w) = looks_warning {
+            self.error(w);
         }
     }
 
@@ -191,12 +202,42 @@ impl ViewerApp {
     }
 }
 
-/// The bundled default face, as [`facebem::input::open`] would return it.
-pub(super) fn default_face_opened() -> Result<(String, Opened), String> {
+/// A file read by [`open_file`]: its name, what it holds and its materials.
+pub(crate) struct OpenedFile {
+    name: String,
+    opened: Opened,
+    looks: crate::surface::Looks,
+}
+
+/// Reads `path` (face or saved rig) and the materials it names.
+pub(crate) fn open_file(path: &Path) -> Result<OpenedFile, String> {
+    let opened = facebem::input::open(path).map_err(|e| e.to_string())?;
+    let text = match &opened {
+        Opened::Face { obj_source, .. } => obj_source.as_deref(),
+        Opened::Model(m) => m.obj_source.as_deref(),
+    };
+    let mut looks = crate::surface::Looks::load(path, text);
+    if matches!(opened, Opened::Model(_)) {
+        // A rig file carries its face's OBJ text, not the folder of its material libraries:
+        // what is found beside it is used, what is not is no news.
+        looks.warnings.clear();
+    }
+    Ok(OpenedFile {
+        name: file_name(path),
+        opened,
+        looks,
+    })
+}
+
+/// The bundled default face, as [`open_file`] would return it.
+pub(super) fn default_face_opened() -> Result<OpenedFile, String> {
     let mesh = facebem::input::default_face().map_err(|e| e.to_string())?;
     let obj_source = Some(facebem::input::DEFAULT_FACE_OBJ.to_owned());
-    let name = facebem::input::DEFAULT_FACE_NAME.to_owned();
-    Ok((name, Opened::Face { mesh, obj_source }))
+    Ok(OpenedFile {
+        name: facebem::input::DEFAULT_FACE_NAME.to_owned(),
+        opened: Opened::Face { mesh, obj_source },
+        looks: crate::surface::Looks::default(),
+    })
 }
 
 pub(super) fn file_name(path: &Path) -> String {

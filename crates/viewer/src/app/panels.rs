@@ -69,10 +69,8 @@ impl ViewerApp {
             .max_height(MUSCLE_SLIDERS_HEIGHT)
             .show(ui, |ui| {
                 for (id, value) in ids.iter().zip(self.sliders.iter_mut()) {
-                    let name = face_prep::MuscleKind::from_id(id)
-                        .map_or(id.as_str(), |m| m.display_name());
                     changed |= ui
-                        .add(egui::Slider::new(value, -1.0..=1.0).text(name))
+                        .add(egui::Slider::new(value, -1.0..=1.0).text(slider_label(id)))
                         .changed();
                 }
             });
@@ -130,15 +128,40 @@ impl ViewerApp {
             ui.spacing_mut().item_spacing = egui::vec2(4.0, 1.0);
             ui.spacing_mut().interact_size.y = 12.0;
             let small = |text: &str| egui::Label::new(egui::RichText::new(text).small());
-            ui.add(small("Muscle colours").selectable(false));
-            for (color, name) in &rows {
-                ui.horizontal(|ui| {
-                    let (rect, _) =
-                        ui.allocate_exact_size(egui::vec2(8.0, 8.0), egui::Sense::hover());
-                    ui.painter().rect_filled(rect, 1.5, *color);
-                    ui.add(small(name).selectable(false));
-                });
+            // Collapsed at first: hovering a line names its muscle.
+            egui::CollapsingHeader::new(
+                egui::RichText::new(format!("Muscle colours ({})", rows.len())).small(),
+            )
+            .id_salt("muscle legend")
+            .default_open(false)
+            .show(ui, |ui| {
+                for (color, name) in &rows {
+                    ui.horizontal(|ui| {
+                        let (rect, _) =
+                            ui.allocate_exact_size(egui::vec2(8.0, 8.0), egui::Sense::hover());
+                        ui.painter().rect_filled(rect, 1.5, *color);
+                        ui.add(small(name).selectable(false));
+                    });
+                }
+            });
+        });
+    }
+
+    /// The heat map's colour scale (the contact sheet's, in mm).
+    fn heat_legend_ui(&self, ui: &mut egui::Ui) {
+        use facebem::report::contact_sheet::heat;
+        ui.horizontal_wrapped(|ui| {
+            ui.spacing_mut().item_spacing.x = 2.0;
+            for (i, c) in heat::COLOURS.iter().enumerate() {
+                let (rect, _) =
+                    ui.allocate_exact_size(egui::vec2(10.0, 10.0), egui::Sense::hover());
+                ui.painter()
+                    .rect_filled(rect, 1.0, egui::Color32::from_rgb(c[0], c[1], c[2]));
+                if i == 0 || i + 1 == heat::COLOURS.len() {
+                    ui.small(heat::edge_label(i));
+                }
             }
+            ui.small("mm");
         });
     }
 
@@ -151,6 +174,15 @@ impl ViewerApp {
                 self.camera.reset();
             }
         });
+        ui.horizontal(|ui| {
+            ui.checkbox(&mut self.heat, "Heat map")
+                .on_hover_text("Displacement from the neutral face in mm, over the texture");
+            ui.checkbox(&mut self.compare, "Compare")
+                .on_hover_text("The neutral face beside the posed one, same camera");
+        });
+        if self.heat {
+            self.heat_legend_ui(ui);
+        }
         let mut o = self.overlays;
         ui.horizontal_wrapped(|ui| {
             ui.checkbox(&mut o.muscles, "Muscles");
@@ -448,4 +480,10 @@ fn seconds_text(seconds: f32) -> String {
         let s = seconds.round() as u64;
         format!("{} min {:02} s", s / 60, s % 60)
     }
+}
+
+/// The label of a muscle slider: the thesis name of a standard muscle, else its id.
+pub(super) fn slider_label(id: &str) -> String {
+    face_prep::MuscleKind::from_id(id)
+        .map_or_else(|| id.to_owned(), |m| m.display_name().to_owned())
 }

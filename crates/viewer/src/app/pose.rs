@@ -6,7 +6,7 @@ use std::sync::Arc;
 use glam::DVec3;
 
 use super::{SELECTION, ViewerApp};
-use crate::overlay::overlay_lines;
+use crate::overlay::{muscle_path, overlay_lines};
 use crate::renderer::LineVertex;
 
 impl ViewerApp {
@@ -83,9 +83,21 @@ impl ViewerApp {
                     }
                     g
                 });
+                let shown_geo = posed_geo.as_ref().unwrap_or(geo);
+                self.muscle_paths = if self.overlays.muscles {
+                    let muscles = self.params.muscles.as_deref().unwrap_or(&model.rig.muscles);
+                    (muscles.iter())
+                        .map(|m| {
+                            let path = muscle_path(&model.rig, shown_geo, &m.front_chain);
+                            (super::muscle_label(m), path)
+                        })
+                        .collect()
+                } else {
+                    Vec::new()
+                };
                 lines = overlay_lines(
                     &model.rig,
-                    posed_geo.as_ref().unwrap_or(geo),
+                    shown_geo,
                     &self.overlays,
                     selected_element,
                     self.params.muscles.as_deref(),

@@ -5,11 +5,93 @@ use egui_wgpu::wgpu;
 
 use super::{DEPTH_FORMAT, LineVertex, SceneUniforms};
 use crate::posed_mesh::MeshVertex;
+use crate::surface::SurfaceVertex;
 
 const MESH_LAYOUT: [wgpu::VertexAttribute; 2] =
     wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3];
 const LINE_LAYOUT: [wgpu::VertexAttribute; 2] =
     wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x4];
+const SURFACE_LAYOUT: [wgpu::VertexAttribute; 4] =
+    wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Float32x2, 3 => Float32x4];
+
+/// The bind group layout of a surface part's material: texture, sampler, colour factor.
+pub(super) fn material_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
+    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some("facebem material"),
+        entries: &[
+            wgpu::BindGroupLayoutEntry {
+                binding: 0,
+                visibility: wgpu::ShaderStages::FRAGMENT,
+                ty: wgpu::BindingType::Texture {
+                    sample_type: wgpu::TextureSampleType::Float { filterable: true },
+                    view_dimension: wgpu::TextureViewDimension::D2,
+                    multisampled: false,
+                },
+                count: None,
+            },
+            wgpu::BindGroupLayoutEntry {
+                binding: 1,
+                visibility: wgpu::ShaderStages::FRAGMENT,
+                ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+                count: None,
+            },
+            wgpu::BindGroupLayoutEntry {
+                binding: 2,
+                visibility: wgpu::ShaderStages::FRAGMENT,
+                ty: wgpu::BindingType::Buffer {
+                    ty: wgpu::BufferBindingType::Uniform,
+                    has_dynamic_offset: false,
+                    min_binding_size: None,
+                },
+                count: None,
+            },
+        ],
+    })
+}
+
+/// The surface pipeline (user layout, material, heat; depth-tested, writes depth).
+pub(super) fn surface_pipeline(
+    device: &wgpu::Device,
+    shader: &wgpu::ShaderModule,
+    uniform_layout: &wgpu::BindGroupLayout,
+    material_layout: &wgpu::BindGroupLayout,
+    color_format: wgpu::TextureFormat,
+) -> wgpu::RenderPipeline {
+    let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: Some("facebem surface"),
+        bind_group_layouts: &[Some(uniform_layout), Some(material_layout)],
+        immediate_size: 0,
+    });
+    device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        label: Some("facebem surface"),
+        layout: Some(&layout),
+        vertex: wgpu::VertexState {
+            module: shader,
+            entry_point: Some("vs_surface"),
+            compilation_options: Default::default(),
+            buffers: &[Some(wgpu::VertexBufferLayout {
+                array_stride: size_of::<SurfaceVertex>() as u64,
+                step_mode: wgpu::VertexStepMode::Vertex,
+                attributes: &SURFACE_LAYOUT,
+            })],
+        },
+        primitive: wgpu::PrimitiveState::default(),
+        depth_stencil: depth_state(true, wgpu::CompareFunction::LessEqual),
+        multisample: wgpu::MultisampleState::default(),
+        fragment: Some(wgpu::FragmentState {
+            module: shader,
+            entry_point: Some("fs_surface"),
+            compilation_options: Default::default(),
+            targets: &[Some(wgpu::ColorTargetState {
+                format: color_format,
+                blend: None,
+                write_mask: wgpu::ColorWrites::ALL,
+            })],
+        }),
+        multiview_mask: None,
+        cache: None,
+    })
+}
 
 /// The bind group layouts of the scene uniforms and of the blit's source texture.
 pub(super) fn bind_group_layouts(
@@ -75,13 +157,13 @@ fn depth_state(write: bool, compare: wgpu::CompareFunction) -> Option<wgpu::Dept
     })
 }
 
-/// The mesh, wireframe and overlay-line pipelines, in that order.
+/// The wireframe and overlay-line pipelines, in that order.
 pub(super) fn scene_pipelines(
     device: &wgpu::Device,
     shader: &wgpu::ShaderModule,
     scene_pl: &wgpu::PipelineLayout,
     color_format: wgpu::TextureFormat,
-) -> [wgpu::RenderPipeline; 3] {
+) -> [wgpu::RenderPipeline; 2] {
     let mesh_buffers = [Some(wgpu::VertexBufferLayout {
         array_stride: size_of::<MeshVertex>() as u64,
         step_mode: wgpu::VertexStepMode::Vertex,
@@ -129,15 +211,6 @@ pub(super) fn scene_pipelines(
             cache: None,
         })
     };
-    let mesh_pipeline = make(
-        "facebem mesh",
-        "vs_mesh",
-        "fs_mesh",
-        &mesh_buffers,
-        wgpu::PrimitiveTopology::TriangleList,
-        true,
-        wgpu::CompareFunction::LessEqual,
-    );
     let wire_pipeline = make(
         "facebem wire",
         "vs_wire",
@@ -156,7 +229,7 @@ pub(super) fn scene_pipelines(
         false,
         wgpu::CompareFunction::Always,
     );
-    [mesh_pipeline, wire_pipeline, line_pipeline]
+    [wire_pipeline, line_pipeline]
 }
 
 /// The pipeline copying the offscreen colour target into egui's render pass.

@@ -24,6 +24,7 @@ mod buffers;
 mod document;
 mod external;
 mod glb;
+mod looks;
 mod meshes;
 
 #[doc(inline)]
@@ -32,4 +33,5 @@ pub use buffers::decode_base64;
 pub(crate) use document::Document;
 pub use document::MAX_NODE_DEPTH;
 pub use external::files_read_by;
+pub use looks::{MaterialLook, material_looks};
 pub(crate) use meshes::{attribute, mesh_labels, primitives};
