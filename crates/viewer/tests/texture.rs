@@ -242,6 +242,44 @@ fn a_textured_face_shows_its_texture_heat_map_and_compare() {
     let (left_red, _) = checker_counts(&pixels(&compare, (0.32, 0.63)));
     assert!(left_red > 0, "the neutral face shows its texture");
 
+    // mouthSmileLeft at 1 in the browser poses the rig as `facebem pose --preset
+    // mouthSmileLeft` does: the same sliders (expressions::sliders_for_name) and the same OBJ
+    // positions (FaceModel::write_obj), to 1e-6 of the face's size.
+    assert!(
+        harness
+            .state_mut()
+            .set_expression_weight("mouthSmileLeft", 1.0)
+    );
+    harness.run();
+    let model = harness.state().model().unwrap().clone();
+    let (sliders, _) =
+        facebem::expressions::sliders_for_name("mouthSmileLeft", model.muscle_ids()).unwrap();
+    assert_eq!(harness.state().sliders(), &sliders[..]);
+    let posed_obj = dir.path().join("smile.obj");
+    model.write_obj(&posed_obj, &sliders).unwrap();
+    let cli: Vec<[f64; 3]> = std::fs::read_to_string(&posed_obj)
+        .unwrap()
+        .lines()
+        .filter_map(|l| l.strip_prefix("v "))
+        .map(|l| {
+            let x: Vec<f64> = l.split_whitespace().map(|w| w.parse().unwrap()).collect();
+            [x[0], x[1], x[2]]
+        })
+        .collect();
+    let size = viewer::posed_mesh::bounding_sphere(&basis.neutral)
+        .unwrap()
+        .1;
+    let uploaded = harness.state().uploaded_vertices();
+    // The OBJ has the input's `v` lines; the viewer the welded vertices they map to.
+    assert_eq!(cli.len(), model.mesh.input_to_vertex.len());
+    for (c, w) in cli.iter().zip(&model.mesh.input_to_vertex) {
+        let u = uploaded[w.expect("every v line is used") as usize];
+        for k in 0..3 {
+            let d = (c[k] - f64::from(u.position[k])).abs();
+            assert!(d <= 1e-6 * size, "{c:?} vs {:?}", u.position);
+        }
+    }
+
     // The same face as a GLB with its material (baseColorTexture), opened again.
     let glb = dir.path().join("face.glb");
     let text = std::fs::read_to_string(&obj).unwrap();

@@ -115,6 +115,45 @@ fn arkit_and_vrm_names_apply_like_presets() {
     assert_eq!(harness.state().sliders(), &want[..]);
 }
 
+/// A file dropped on the window, as the windowing integration hands it to egui.
+#[derive(Debug)]
+struct DroppedPath(std::path::PathBuf);
+
+impl egui::DroppedFile for DroppedPath {
+    fn path(&self) -> &std::path::Path {
+        &self.0
+    }
+
+    fn bytes(&self) -> Result<Vec<u8>, String> {
+        std::fs::read(&self.0).map_err(|e| e.to_string())
+    }
+}
+
+#[test]
+fn a_file_dropped_on_the_window_is_opened() {
+    let basis = common::synthetic_default_basis();
+    let mut harness = common::harness_with(Some(basis));
+    let face = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../assets/ict_narrow_face_dec2500_4loop.obj");
+    harness
+        .input_mut()
+        .dropped_files
+        .push(std::sync::Arc::new(DroppedPath(face.clone())));
+    harness.step();
+    // The file is read in the background, shown at once, and its rig started: cancelled here
+    // (this test checks the drop, not the rig).
+    while !harness.state().is_rigging() {
+        assert!(harness.state().is_busy(), "{:?}", harness.state().message());
+        std::thread::sleep(std::time::Duration::from_millis(5));
+        harness.step();
+    }
+    harness.state_mut().cancel_rig();
+    common::wait_idle(&mut harness);
+    let (mesh, _) = facebem::input::read_face(&face).unwrap();
+    assert_eq!(harness.state().basis().unwrap().neutral, mesh.vertices);
+    harness.get_by_label("ict_narrow_face_dec2500_4loop.obj");
+}
+
 #[test]
 fn opening_a_bad_file_shows_the_message_and_keeps_the_face() {
     let dir = tempfile::tempdir().unwrap();
