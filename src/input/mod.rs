@@ -1,6 +1,8 @@
 //! Conveniences for applications: open a face file or a saved rig, compute-and-cache a face,
 //! the bundled default face.
 
+pub mod heads;
+
 use std::path::{Path, PathBuf};
 
 use face_prep::{FaceMesh, InputLimits};

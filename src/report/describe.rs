@@ -179,3 +179,111 @@ pub fn describe_loops(path: &Path, mesh: &FaceMesh) -> String {
     }
     s
 }
+
+/// What `facebem info` says of a file holding several parts (a head or an avatar, issue 32):
+/// each part found ([`face_prep::parts::find_parts`]) with its vertices, triangles and the
+/// names the file gives it, and the head's directions.
+///
+/// ```
+/// use face_prep::parts::{Scene, find_parts};
+/// let obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\ng skin\nf 1 2 3\n";
+/// let scene = Scene::from_obj(obj, &Default::default()).unwrap();
+/// let parts = find_parts(&scene).unwrap();
+/// let text = facebem::report::describe::describe_parts("head.obj".as_ref(), &scene, &parts);
+/// assert!(text.contains("skin: 1 component, 3 vertices, 1 triangles (skin)"), "{text}");
+/// ```
+pub fn describe_parts(
+    path: &Path,
+    scene: &face_prep::parts::Scene,
+    parts: &face_prep::parts::HeadParts,
+) -> String {
+    use face_prep::parts::PartKind;
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "{} (head or avatar: {} vertices, {} triangles, {} connected components)",
+        path.display(),
+        scene.positions.len(),
+        scene.triangles.len(),
+        parts.components.len()
+    );
+    let order = [
+        PartKind::Skin,
+        PartKind::Eyeball(face_prep::parts::Side::Left),
+        PartKind::Eyeball(face_prep::parts::Side::Right),
+        PartKind::UpperTooth,
+        PartKind::LowerTooth,
+        PartKind::GumsAndTongue,
+        PartKind::LidPart,
+        PartKind::Other,
+    ];
+    for kind in order {
+        let members: Vec<usize> = (0..parts.kinds.len())
+            .filter(|&i| parts.kinds[i] == kind)
+            .collect();
+        if members.is_empty() {
+            continue;
+        }
+        let vertices: usize = members
+            .iter()
+            .map(|&i| parts.components[i].vertices.len())
+            .sum();
+        let triangles: usize = members
+            .iter()
+            .map(|&i| parts.components[i].triangles.len())
+            .sum();
+        let mut labels: Vec<&str> = members
+            .iter()
+            .flat_map(|&i| &parts.components[i].triangles)
+            .map(|&t| scene.labels[scene.triangle_label[t as usize] as usize].as_str())
+            .collect();
+        labels.sort_unstable();
+        labels.dedup();
+        let shown = labels
+            .iter()
+            .take(4)
+            .copied()
+            .collect::<Vec<_>>()
+            .join(", ");
+        let more = labels.len().saturating_sub(4);
+        let more = if more > 0 {
+            format!(" and {more} more")
+        } else {
+            String::new()
+        };
+        let n = members.len();
+        let _ = writeln!(
+            s,
+            "  {}: {n} component{}, {vertices} vertices, {triangles} triangles ({shown}{more})",
+            kind.describe(),
+            if n == 1 { "" } else { "s" },
+        );
+    }
+    match (parts.eyeballs, parts.frame) {
+        (Some([l, r]), Some(f)) => {
+            let _ = writeln!(
+                s,
+                "  eyeballs: radius {} and {}, centres {} apart; the subject's left is ({:.3}, {:.3}, {:.3}), up ({:.3}, {:.3}, {:.3}), forward ({:.3}, {:.3}, {:.3})",
+                face_prep::error::sig6(l.radius),
+                face_prep::error::sig6(r.radius),
+                face_prep::error::sig6(l.centre.distance(r.centre)),
+                f.left.x,
+                f.left.y,
+                f.left.z,
+                f.up.x,
+                f.up.y,
+                f.up.z,
+                f.forward.x,
+                f.forward.y,
+                f.forward.z,
+            );
+        }
+        _ => {
+            let _ = writeln!(
+                s,
+                "  no eyeballs found (two closed spheres of an eye's size)"
+            );
+        }
+    }
+    s
+}

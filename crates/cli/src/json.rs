@@ -102,3 +102,41 @@ pub(crate) fn info_report(
     }
     report
 }
+
+/// `info --json` of a head or an avatar: each component's part, size and names.
+pub(crate) fn parts_report(
+    path: &Path,
+    scene: &face_prep::parts::Scene,
+    parts: &face_prep::parts::HeadParts,
+    refusal: &str,
+) -> Value {
+    let components: Vec<Value> = parts
+        .components
+        .iter()
+        .zip(&parts.kinds)
+        .map(|(c, kind)| {
+            let mut labels: Vec<&str> = c
+                .triangles
+                .iter()
+                .map(|&t| scene.labels[scene.triangle_label[t as usize] as usize].as_str())
+                .collect();
+            labels.sort_unstable();
+            labels.dedup();
+            json!({
+                "part": kind.describe(),
+                "vertices": c.vertices.len(),
+                "triangles": c.triangles.len(),
+                "names": labels,
+            })
+        })
+        .collect();
+    json!({
+        "command": "info",
+        "file": path,
+        "kind": "head or avatar",
+        "vertices": scene.positions.len(),
+        "triangles": scene.triangles.len(),
+        "components": components,
+        "refused": refusal,
+    })
+}

@@ -43,9 +43,17 @@ use sheet::sheet;
 static LIMITS: std::sync::OnceLock<face_prep::InputLimits> = std::sync::OnceLock::new();
 
 /// Opens a face mesh or rig under the command line's input limits.
-fn open(path: &Path) -> Result<Opened, facebem::input::OpenError> {
+fn open(path: &Path) -> Result<Opened> {
+    open_or_describe(path, false)
+}
+
+/// Opens a face or rig file; a file of several parts (a head, an avatar) is refused saying so,
+/// after `describe` lists its parts.
+fn open_or_describe(path: &Path, describe: bool) -> Result<Opened> {
     let limits = LIMITS.get().copied().unwrap_or_default();
-    facebem::input::OpenOptions { limits }.open(path)
+    facebem::input::OpenOptions { limits }
+        .open(path)
+        .map_err(|e| rig::whole_file_parts(path, e, describe))
 }
 
 /// Writes a report line to stdout. Regression (found piping `facebem export … | head -1`):

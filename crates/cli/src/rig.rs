@@ -251,7 +251,7 @@ pub(crate) fn rig(
 }
 
 pub(crate) fn info(file: &Path) -> Result<()> {
-    let opened = open(file)?;
+    let opened = crate::open_or_describe(file, true)?;
     let (rig, mesh, model) = match &opened {
         Opened::Model(model) => (model.rig.clone(), &model.mesh, Some(model.as_ref())),
         Opened::Face { mesh, .. } => match facebem::prep_rig(mesh, &PipelineParams::default()) {
@@ -284,4 +284,33 @@ pub(crate) fn muscles(face: &Path, output: &Path) -> Result<()> {
         .with_context(|| format!("cannot write {}", output.display()))?;
     outln!("{}: {} muscles", output.display(), rig.muscles.len());
     Ok(())
+}
+
+/// A file that is not one face: if it holds several parts (a head or an avatar), why it is not
+/// rigged (and, with `describe`, what the parts are, on stdout); otherwise the reading error as
+/// it is.
+pub(crate) fn whole_file_parts(
+    file: &Path,
+    e: facebem::input::OpenError,
+    describe: bool,
+) -> anyhow::Error {
+    if !matches!(&e, facebem::input::OpenError::Face { .. }) {
+        return e.into();
+    }
+    let Some(whole) = facebem::input::heads::WholeFile::read(file) else {
+        return e.into();
+    };
+    let refusal = whole.refusal(file);
+    if let (true, Ok(parts)) = (describe, &whole.parts) {
+        if crate::json::mode() {
+            let report = crate::json::parts_report(file, &whole.scene, parts, &refusal);
+            crate::json::print(&report);
+        } else {
+            out!(
+                "{}",
+                facebem::report::describe::describe_parts(file, &whole.scene, parts)
+            );
+        }
+    }
+    anyhow::anyhow!("{refusal}")
 }

@@ -22,6 +22,7 @@ pub mod controls;
 pub mod error;
 pub mod frame;
 pub mod input;
+pub mod parts;
 mod rig;
 pub mod shell;
 

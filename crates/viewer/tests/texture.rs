@@ -242,9 +242,18 @@ fn a_textured_face_shows_its_texture_heat_map_and_compare() {
     let (left_red, _) = checker_counts(&pixels(&compare, (0.32, 0.63)));
     assert!(left_red > 0, "the neutral face shows its texture");
 
-    // mouthSmileLeft at 1 in the browser poses the rig as `facebem pose --preset
-    // mouthSmileLeft` does: the same sliders (expressions::sliders_for_name) and the same OBJ
-    // positions (FaceModel::write_obj), to 1e-6 of the face's size.
+    smile_like_the_command_line(&mut harness, &basis, dir.path());
+    glb_keeps_the_texture(&harness, &obj, &surface, cache.path());
+}
+
+/// mouthSmileLeft at 1 in the browser poses the rig as `facebem pose --preset mouthSmileLeft`
+/// does: the same sliders (expressions::sliders_for_name) and the same OBJ positions
+/// (FaceModel::write_obj), to 1e-6 of the face's size.
+fn smile_like_the_command_line(
+    harness: &mut egui_kittest::Harness<'static, viewer::ViewerApp>,
+    basis: &facebem::MuscleBasis,
+    dir: &Path,
+) {
     assert!(
         harness
             .state_mut()
@@ -255,7 +264,7 @@ fn a_textured_face_shows_its_texture_heat_map_and_compare() {
     let (sliders, _) =
         facebem::expressions::sliders_for_name("mouthSmileLeft", model.muscle_ids()).unwrap();
     assert_eq!(harness.state().sliders(), &sliders[..]);
-    let posed_obj = dir.path().join("smile.obj");
+    let posed_obj = dir.join("smile.obj");
     model.write_obj(&posed_obj, &sliders).unwrap();
     let cli: Vec<[f64; 3]> = std::fs::read_to_string(&posed_obj)
         .unwrap()
@@ -279,11 +288,20 @@ fn a_textured_face_shows_its_texture_heat_map_and_compare() {
             assert!(d <= 1e-6 * size, "{c:?} vs {:?}", u.position);
         }
     }
+}
 
-    // The same face as a GLB with its material (baseColorTexture), opened again.
-    let glb = dir.path().join("face.glb");
-    let text = std::fs::read_to_string(&obj).unwrap();
-    let materials = facebem::export::material::ObjMaterials::load(&text, dir.path()).unwrap();
+/// The same face as a GLB with its material (baseColorTexture), opened again, keeps its texture
+/// and texture coordinates.
+fn glb_keeps_the_texture(
+    harness: &egui_kittest::Harness<'static, viewer::ViewerApp>,
+    obj: &Path,
+    surface: &viewer::surface::Surface,
+    cache: &Path,
+) {
+    let dir = obj.parent().unwrap();
+    let glb = dir.join("face.glb");
+    let text = std::fs::read_to_string(obj).unwrap();
+    let materials = facebem::export::material::ObjMaterials::load(&text, dir).unwrap();
     let params = facebem::export::GltfParams {
         materials: Some(materials),
         ..Default::default()
@@ -294,7 +312,7 @@ fn a_textured_face_shows_its_texture_heat_map_and_compare() {
         .unwrap()
         .write_gltf(&glb, &params)
         .unwrap();
-    let reopened = harness_opening(&glb, cache.path());
+    let reopened = harness_opening(&glb, cache);
     let s = reopened.state().surface().unwrap();
     assert_eq!(s.textures.len(), 1);
     assert_eq!(*s.textures[0], *surface.textures[0]);

@@ -155,6 +155,26 @@ fn a_file_dropped_on_the_window_is_opened() {
 }
 
 #[test]
+fn opening_a_whole_head_says_what_it_holds_and_keeps_the_face() {
+    let head = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../assets/heads/ict_generic_head.obj");
+    let basis = common::synthetic_default_basis();
+    let mut harness = common::harness_with(Some(basis.clone()));
+    common::open_via_path_field(&mut harness, &head);
+    common::wait_idle(&mut harness);
+    let message = harness.state().message().cloned().expect("a message");
+    assert!(message.is_error);
+    for needle in [
+        "a head or avatar of 42 parts",
+        "2 eyeballs",
+        "16 upper and 16 lower teeth",
+    ] {
+        assert!(message.text.contains(needle), "{}", message.text);
+    }
+    assert_eq!(harness.state().basis(), Some(&basis));
+}
+
+#[test]
 fn opening_a_bad_file_shows_the_message_and_keeps_the_face() {
     let dir = tempfile::tempdir().unwrap();
     let bad = dir.path().join("broken_face.obj");

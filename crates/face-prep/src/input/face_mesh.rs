@@ -387,6 +387,16 @@ pub fn gltf_face_data(
     let mut doc = Document::parse(bytes, base, limits)?;
     let labels = gltf_read::mesh_labels(&doc.root);
     let mesh = select_mesh(&doc, &labels, mesh_name)?;
+    gltf_mesh_data(&mut doc, &labels, mesh, limits)
+}
+
+/// [`gltf_face_data`] of mesh number `mesh` of a parsed document (`labels`: its meshes' labels).
+pub(crate) fn gltf_mesh_data(
+    doc: &mut Document,
+    labels: &[String],
+    mesh: usize,
+    limits: &InputLimits,
+) -> Result<GltfFaceData, PrepError> {
     let world = doc.mesh_world_transform(mesh)?.unwrap_or(DMat4::IDENTITY);
     let normal_matrix = glam::DMat3::from_mat4(world).inverse().transpose();
     let mut positions = Vec::new();
@@ -399,7 +409,7 @@ pub fn gltf_face_data(
         .enumerate()
     {
         let err = |reason: &str| PrepError::GltfPrimitive {
-            mesh: labels[mesh].clone(),
+            mesh: labels.get(mesh).cloned().unwrap_or_default(),
             primitive: pi,
             reason: reason.to_owned(),
         };

@@ -211,7 +211,13 @@ pub(crate) struct OpenedFile {
 
 /// Reads `path` (face or saved rig) and the materials it names.
 pub(crate) fn open_file(path: &Path) -> Result<OpenedFile, String> {
-    let opened = facebem::input::open(path).map_err(|e| e.to_string())?;
+    let opened = facebem::input::open(path).map_err(|e| {
+        // A head or an avatar: say what it holds and why it is not rigged.
+        match (&e, facebem::input::heads::WholeFile::read(path)) {
+            (facebem::input::OpenError::Face { .. }, Some(whole)) => whole.refusal(path),
+            _ => e.to_string(),
+        }
+    })?;
     let text = match &opened {
         Opened::Face { obj_source, .. } => obj_source.as_deref(),
         Opened::Model(m) => m.obj_source.as_deref(),

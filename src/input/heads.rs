@@ -1,0 +1,73 @@
+//! A file that is not one face but a head or an avatar of several parts (issue 32): what its
+//! parts are ([`face_prep::parts`]) and the one line that says why it is not rigged yet. The
+//! command line and the viewer say the same.
+
+use std::path::Path;
+
+use face_prep::parts::{HeadParts, PartKind, Scene, find_parts};
+
+/// What was found in a file of several parts.
+#[derive(Clone, Debug)]
+pub struct WholeFile {
+    /// The file as read.
+    pub scene: Scene,
+    /// Its parts, or why they make no head (two skins, ...).
+    pub parts: Result<HeadParts, face_prep::parts::PartsError>,
+}
+
+impl WholeFile {
+    /// Reads `path` whole; `None` when it cannot be read as a scene or holds one component
+    /// (then the face reader's own error is the one to show).
+    pub fn read(path: &Path) -> Option<WholeFile> {
+        let scene = Scene::read(path, &face_prep::InputLimits::default()).ok()?;
+        if scene.components().len() < 2 {
+            return None;
+        }
+        let parts = find_parts(&scene);
+        Some(WholeFile { scene, parts })
+    }
+
+    /// The parts in a few words: `skin, 2 eyeballs, 16 upper and 16 lower teeth, ...`.
+    pub fn summary(&self) -> String {
+        let Ok(parts) = &self.parts else {
+            return String::new();
+        };
+        let count = |f: &dyn Fn(PartKind) -> bool| parts.kinds.iter().filter(|k| f(**k)).count();
+        let eyes = usize::from(parts.eyeballs.is_some()) * 2;
+        let upper = count(&|k| k == PartKind::UpperTooth);
+        let lower = count(&|k| k == PartKind::LowerTooth);
+        let mut words = vec!["skin".to_owned()];
+        if eyes > 0 {
+            words.push("2 eyeballs".into());
+        }
+        if upper + lower > 0 {
+            words.push(format!("{upper} upper and {lower} lower teeth"));
+        }
+        for (kind, name) in [
+            (PartKind::GumsAndTongue, "gums and tongue"),
+            (PartKind::LidPart, "lid parts"),
+            (PartKind::Other, "other parts"),
+        ] {
+            let n = count(&|k| k == kind);
+            if n > 0 {
+                words.push(format!("{n} {name}"));
+            }
+        }
+        words.join(", ")
+    }
+
+    /// The one line that refuses the file.
+    pub fn refusal(&self, path: &Path) -> String {
+        match &self.parts {
+            Ok(parts) => format!(
+                "{}: a head or avatar of {} parts ({}); facebem rigs one front face with four \
+                 openings (contour, eyes, mouth) and does not yet cut it from a whole head: cut \
+                 the face out and rig that (`facebem info` lists the parts found)",
+                path.display(),
+                parts.components.len(),
+                self.summary()
+            ),
+            Err(e) => format!("{}: {e}", path.display()),
+        }
+    }
+}
