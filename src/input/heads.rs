@@ -60,9 +60,9 @@ impl WholeFile {
     pub fn refusal(&self, path: &Path) -> String {
         match &self.parts {
             Ok(parts) => format!(
-                "{}: a head or avatar of {} parts ({}); facebem rigs one front face with four \
-                 openings (contour, eyes, mouth) and does not yet cut it from a whole head: cut \
-                 the face out and rig that (`facebem info` lists the parts found)",
+                "{}: a head or avatar of {} parts ({}); facebem finds its front face but does \
+                 not yet carry a rig to the rest of the head and its parts: cut the face out (four \
+                 openings: contour, eyes, mouth) and rig that (`facebem info` lists the parts)",
                 path.display(),
                 parts.components.len(),
                 self.summary()

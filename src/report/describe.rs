@@ -285,5 +285,23 @@ pub fn describe_parts(
             );
         }
     }
+    match face_prep::parts::front_face(scene, parts) {
+        Ok(face) => {
+            let loops = face_prep::topology::validate(&face.positions, &face.triangles)
+                .map_or_else(
+                    |e| format!("not a valid face: {e}"),
+                    |l| format!("{} openings", l.len()),
+                );
+            let _ = writeln!(
+                s,
+                "  front face cut from the skin: {} vertices, {} triangles, {loops}",
+                face.positions.len(),
+                face.triangles.len()
+            );
+        }
+        Err(e) => {
+            let _ = writeln!(s, "  front face: {e}");
+        }
+    }
     s
 }

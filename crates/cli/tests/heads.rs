@@ -37,6 +37,8 @@ fn info_lists_the_parts_of_a_head_and_every_command_refuses_it_in_one_line() {
         "lower teeth: 16 components",
         "gums and tongue: 1 component, 2977 vertices",
         "lid parts (lashes, occlusion, tear film)",
+        "front face cut from the skin: ",
+        "triangles, 4 openings",
     ] {
         assert!(stdout.contains(line), "{line:?} missing from:\n{stdout}");
     }

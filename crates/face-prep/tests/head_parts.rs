@@ -250,3 +250,53 @@ fn a_gltf_head_of_several_meshes_under_a_transformed_node_gives_the_same_parts()
     }
     assert!(checked > scene.positions.len());
 }
+
+#[test]
+fn the_front_face_cut_from_the_head_has_four_openings_where_the_features_are() {
+    let scene = Scene::read(&head_path(), &InputLimits::default()).unwrap();
+    let parts = find_parts(&scene).unwrap();
+    let face = face_prep::parts::front_face(&scene, &parts).unwrap();
+    // Only skin, and a valid face of four loops.
+    assert!(face.scene_vertex.iter().all(|&v| v < 14_062));
+    let mesh = face_prep::FaceMesh::from_triangles(&face.positions, &face.triangles).unwrap();
+    let loops = face_prep::topology::validate(&mesh.vertices, &mesh.triangles).unwrap();
+    assert_eq!(loops.len(), 4);
+    let centre = |lp: &Vec<u32>| {
+        lp.iter().map(|&v| mesh.vertices[v as usize]).sum::<DVec3>() / lp.len() as f64
+    };
+    let [l, r] = parts.eyeballs.unwrap();
+    let mut found = Vec::new();
+    for lp in &loops {
+        let c = centre(lp);
+        found.push(if c.distance(l.centre) < l.radius {
+            "eye L"
+        } else if c.distance(r.centre) < r.radius {
+            "eye R"
+        } else if (c.y - (-3.1)).abs() < 1.0 && c.x.abs() < 0.5 && c.z > 9.0 {
+            // ICT's lips part at y ≈ −3.1 cm, in front of the incisors (z ≈ 10.8).
+            "mouth"
+        } else {
+            "contour"
+        });
+    }
+    found.sort_unstable();
+    assert_eq!(
+        found,
+        ["contour", "eye L", "eye R", "mouth"],
+        "{:?}",
+        loops.iter().map(centre).collect::<Vec<_>>()
+    );
+    // The same cut on the head turned, scaled and moved.
+    let q = DQuat::from_axis_angle(DVec3::new(0.3, 1.0, 0.2).normalize(), 30f64.to_radians());
+    let mut moved = scene.clone();
+    for p in &mut moved.positions {
+        *p = q * (10.0 * *p) + DVec3::new(100.0, -50.0, 7.0);
+    }
+    let moved_face = face_prep::parts::front_face(&moved, &find_parts(&moved).unwrap()).unwrap();
+    let set = |f: &face_prep::parts::FrontFace| {
+        let mut v = f.scene_vertex.clone();
+        v.sort_unstable();
+        v
+    };
+    assert_eq!(set(&moved_face), set(&face));
+}

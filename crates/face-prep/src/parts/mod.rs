@@ -21,9 +21,11 @@
 //! to the eyes; the subject's left is `up × forward`. Names and materials are reported but never
 //! required.
 
+pub mod front;
 mod scene;
 mod sphere;
 
+pub use front::{FrontFace, FrontFaceError, front_face};
 pub use scene::{Component, Scene, VertexSource};
 pub use sphere::{Sphere, fit_sphere};
 
