@@ -16,15 +16,19 @@ pub struct WholeFile {
 }
 
 impl WholeFile {
-    /// Reads `path` whole; `None` when it cannot be read as a scene or holds one component
-    /// (then the face reader's own error is the one to show).
+    /// Reads `path` whole; `None` unless it holds several components and two of them are
+    /// eyeballs (then the face reader's own error is the one to show: a file of loose
+    /// triangles is not a head).
     pub fn read(path: &Path) -> Option<WholeFile> {
         let scene = Scene::read(path, &face_prep::InputLimits::default()).ok()?;
         if scene.components().len() < 2 {
             return None;
         }
-        let parts = find_parts(&scene);
-        Some(WholeFile { scene, parts })
+        let parts = find_parts(&scene).ok().filter(|p| p.eyeballs.is_some())?;
+        Some(WholeFile {
+            scene,
+            parts: Ok(parts),
+        })
     }
 
     /// The parts in a few words: `skin, 2 eyeballs, 16 upper and 16 lower teeth, ...`.
@@ -60,9 +64,9 @@ impl WholeFile {
     pub fn refusal(&self, path: &Path) -> String {
         match &self.parts {
             Ok(parts) => format!(
-                "{}: a head or avatar of {} parts ({}); facebem finds its front face but does \
-                 not yet carry a rig to the rest of the head and its parts: cut the face out (four \
-                 openings: contour, eyes, mouth) and rig that (`facebem info` lists the parts)",
+                "{}: a head or avatar of {} parts ({}); `facebem export` rigs its front face and \
+                 carries the rig to every part, but rig, pose, sheet and the viewer take one face \
+                 (four openings: contour, eyes, mouth), not a whole head yet",
                 path.display(),
                 parts.components.len(),
                 self.summary()

@@ -7,6 +7,7 @@
 //! the copy does not hold follow the commissure.
 
 mod carry;
+pub mod head;
 
 use glam::DVec3;
 use rayon::prelude::*;

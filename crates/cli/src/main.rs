@@ -22,6 +22,7 @@ macro_rules! out {
 }
 
 mod args;
+mod head;
 mod json;
 mod pose;
 mod rig;
@@ -47,13 +48,16 @@ fn open(path: &Path) -> Result<Opened> {
     open_or_describe(path, false)
 }
 
+/// Opens a face or rig file, with the face reader's own error.
+fn open_face(path: &Path) -> Result<Opened, facebem::input::OpenError> {
+    let limits = LIMITS.get().copied().unwrap_or_default();
+    facebem::input::OpenOptions { limits }.open(path)
+}
+
 /// Opens a face or rig file; a file of several parts (a head, an avatar) is refused saying so,
 /// after `describe` lists its parts.
 fn open_or_describe(path: &Path, describe: bool) -> Result<Opened> {
-    let limits = LIMITS.get().copied().unwrap_or_default();
-    facebem::input::OpenOptions { limits }
-        .open(path)
-        .map_err(|e| rig::whole_file_parts(path, e, describe))
+    open_face(path).map_err(|e| rig::whole_file_parts(path, e, describe))
 }
 
 /// Writes a report line to stdout. Regression (found piping `facebem export … | head -1`):

@@ -105,7 +105,19 @@ pub(crate) fn export(
     let started = std::time::Instant::now();
     let params = pipeline_params(solver)?;
     facebem::check_output(gltf, &[rig], &["glb", "gltf"], "a glTF export")?;
-    let opened = crate::open(rig)?;
+    let opened = match crate::open_face(rig) {
+        Ok(opened) => opened,
+        // A whole head: its front face rigged, the rig carried to every part.
+        Err(e @ facebem::input::OpenError::Face { .. }) => {
+            return match facebem::input::heads::WholeFile::read(rig) {
+                Some(whole) => {
+                    crate::head::export_head(rig, gltf, whole, gltf_params, &params, solver, force)
+                }
+                None => Err(e.into()),
+            };
+        }
+        Err(e) => return Err(e.into()),
+    };
     // The OBJ's own materials and textures, read from its folder (a rig file's: the folder it
     // is in) before any work; they are inputs the output must not overwrite.
     let obj_text = match &opened {

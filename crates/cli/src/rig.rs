@@ -54,7 +54,7 @@ impl RigSource {
 
 /// The model of `mesh` with `params`: from the rig cache the viewer shares when it holds it
 /// (unless `no_cache`), else computed with a progress bar and saved there.
-fn compute(
+pub(crate) fn compute(
     mesh: &face_prep::FaceMesh,
     obj_source: Option<String>,
     params: &PipelineParams,

@@ -1,0 +1,92 @@
+//! `facebem export` of a whole head (issue 32, first method): its front face is cut from the
+//! skin and rigged like a face mesh, the rig is carried to every vertex of every part
+//! ([`facebem::transfer::head::carry_to_head`]), and the user's OBJ comes back as a glTF with
+//! its own vertices, texture coordinates and materials and the morph targets on all of it.
+
+use std::path::{Path, PathBuf};
+
+use anyhow::{Context, Result, bail};
+use face_prep::parts::front_face;
+use facebem::input::heads::WholeFile;
+
+use crate::args::SolverArgs;
+use crate::rig::{check_trust, compute};
+
+/// Exports the head read as `whole` from `path` to `gltf`.
+pub(crate) fn export_head(
+    path: &Path,
+    gltf: &Path,
+    whole: WholeFile,
+    gltf_params: facebem::export::GltfParams,
+    params: &facebem::PipelineParams,
+    solver: &SolverArgs,
+    force: bool,
+) -> Result<()> {
+    let is_obj = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case("obj"));
+    if !is_obj {
+        bail!(
+            "{}: a glTF head is not exported yet (an OBJ head is): {}",
+            path.display(),
+            whole.summary()
+        );
+    }
+    let parts = match &whole.parts {
+        Ok(parts) => parts,
+        Err(e) => bail!("{}: {e}", path.display()),
+    };
+    let front =
+        front_face(&whole.scene, parts).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+    let mesh = face_prep::FaceMesh::from_triangles(&front.positions, &front.triangles)
+        .with_context(|| format!("{}: its front face", path.display()))?;
+    let limits = face_prep::InputLimits::default();
+    let bytes = face_prep::limits::read_input_file(path, &limits)?;
+    let text = String::from_utf8_lossy(&bytes).into_owned();
+    let folder = match path.parent() {
+        Some(f) if !f.as_os_str().is_empty() => f,
+        _ => Path::new("."),
+    };
+    let materials = facebem::export::material::ObjMaterials::load(&text, folder)?;
+    let mut inputs: Vec<&Path> = vec![path];
+    inputs.extend(materials.files_read.iter().map(PathBuf::as_path));
+    facebem::check_output(gltf, &inputs, &["glb", "gltf"], "a glTF export")?;
+    outln!(
+        "{} is a head ({}): rigging its front face ({} triangles) first",
+        path.display(),
+        whole.summary(),
+        mesh.triangles.len()
+    );
+    let (model, _) = compute(&mesh, None, params, solver.no_cache)?;
+    check_trust(&model, force)?;
+    let basis = facebem::transfer::head::carry_to_head(
+        &whole.scene,
+        parts,
+        &front,
+        &model.mesh,
+        &model.rig,
+        &model.basis,
+    );
+    let identity: Vec<Option<u32>> = (0..whole.scene.positions.len() as u32).map(Some).collect();
+    let layout = facebem::export::ExportLayout::from_obj(&text, &identity)?;
+    let warnings = materials.warnings.clone();
+    let params = facebem::export::GltfParams {
+        format: facebem::export::GltfFormat::from_path(gltf),
+        materials: Some(materials),
+        ..model.gltf_params(&gltf_params)
+    };
+    let (bytes, summary) = facebem::export::build_gltf(&basis, &layout, &params)?;
+    facebem::write_atomic(gltf, &bytes)?;
+    for w in warnings.iter().chain(&summary.warnings) {
+        eprintln!("warning: {w}");
+    }
+    outln!(
+        "{}: {} morph targets on all {} vertices of the head, {:.0} KB",
+        gltf.display(),
+        summary.target_names.len(),
+        basis.neutral.len(),
+        summary.bytes as f64 / 1000.0
+    );
+    Ok(())
+}

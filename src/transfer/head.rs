@@ -1,0 +1,197 @@
+//! A front face's responses carried to a whole head (issue 32, items 4 and 5, first method):
+//! every vertex of every part gets a displacement per control, linear in the face's, so the
+//! named expressions (sums of controls) carry the same way.
+//!
+//! - **Skin in the front face**: the rig's own displacement.
+//! - **The rest of the skin** (scalp, ears, neck, the eye sockets' and the mouth's linings):
+//!   the displacement of the nearest vertex on the front face's border, times a falloff that is
+//!   1 on the border and reaches 0 at [`FALLOFF`] interocular distances from it
+//!   (`1 − smoothstep`), so there is no seam where the simulated region ends and the back of
+//!   the head stays still.
+//! - **Lower teeth**: the rig's own mandible ([`face_prep::jaw::Jaw::activation`]) in the jaw
+//!   controls — the same rigid motion the jaw's contour is given — and still in every other
+//!   control. **Gums and tongue** take that motion in the share of their distance to the upper
+//!   row over their distances to both rows (the lower gums and the tongue's floor with the jaw,
+//!   the upper gums still).
+//! - **Upper teeth and eyeballs** stay still (the skull; eye rotations are not modelled yet).
+//! - **Lid parts and other parts** follow the nearest skin vertex.
+
+use face_prep::parts::{FrontFace, HeadParts, PartKind, Scene};
+use face_prep::{FaceMesh, FaceRig, Generator, MuscleKind};
+use glam::DVec3;
+
+use crate::model::MuscleBasis;
+
+/// Distance over which the displacement of the skin outside the front face falls to zero, in
+/// interocular distances.
+pub const FALLOFF: f64 = 0.25;
+
+/// The basis of the whole `scene` (its positions and triangles, every part) from the basis
+/// `face` of the front face `front` (read as `mesh`, rigged as `rig`).
+pub fn carry_to_head(
+    scene: &Scene,
+    parts: &HeadParts,
+    front: &FrontFace,
+    mesh: &FaceMesh,
+    rig: &FaceRig,
+    face: &MuscleBasis,
+) -> MuscleBasis {
+    let n = scene.positions.len();
+    let kind_of = vertex_kinds(parts, n);
+    // Scene vertex → the face mesh's vertex.
+    let mut in_face: Vec<Option<u32>> = vec![None; n];
+    for (i, &v) in front.scene_vertex.iter().enumerate() {
+        in_face[v as usize] = mesh.input_to_vertex.get(i).copied().flatten();
+    }
+    let border: Vec<u32> = face_prep::topology::validate(&mesh.vertices, &mesh.triangles)
+        .map(|loops| loops.into_iter().flatten().collect())
+        .unwrap_or_default();
+    let iod = parts
+        .eyeballs
+        .map_or(1.0, |[l, r]| l.centre.distance(r.centre));
+    let falloff = FALLOFF * iod;
+    // Each skin vertex outside the face: its border vertex and weight.
+    let skin_source: Vec<Option<(u32, f64)>> = (0..n)
+        .map(|v| {
+            if kind_of[v] != Some(PartKind::Skin) {
+                return None;
+            }
+            if let Some(m) = in_face[v] {
+                return Some((m, 1.0));
+            }
+            let p = scene.positions[v];
+            let (b, d) = nearest(&border, |b| mesh.vertices[b as usize], p)?;
+            let t = (d / falloff).clamp(0.0, 1.0);
+            let w = 1.0 - t * t * (3.0 - 2.0 * t);
+            (w > 0.0).then_some((b, w))
+        })
+        .collect();
+    let skin: Vec<u32> = (0..n as u32)
+        .filter(|&v| kind_of[v as usize] == Some(PartKind::Skin))
+        .collect();
+    let rows = Rows::new(scene, &kind_of);
+    // What every other vertex follows, found once for all controls.
+    let follow: Vec<Follow> = (0..n)
+        .map(|v| {
+            let p = scene.positions[v];
+            match kind_of[v] {
+                Some(PartKind::LowerTooth) => Follow::Jaw(1.0),
+                Some(PartKind::GumsAndTongue) => Follow::Jaw(rows.lower_share(p)),
+                Some(PartKind::LidPart | PartKind::Other) => {
+                    nearest(&skin, |s| scene.positions[s as usize], p)
+                        .map_or(Follow::Still, |(s, _)| Follow::Skin(s))
+                }
+                _ => Follow::Still,
+            }
+        })
+        .collect();
+    let jaw = rig.jaw();
+    let input_from_canonical = rig.canonical_from_input.inverse();
+    let mm = rig.mm_per_unit();
+    let displacements = face
+        .displacements
+        .iter()
+        .zip(&face.muscle_ids)
+        .map(|(field, id)| {
+            let at = |m: u32| field.get(m as usize).copied().unwrap_or(DVec3::ZERO);
+            let mut out: Vec<DVec3> = skin_source
+                .iter()
+                .map(|s| s.map_or(DVec3::ZERO, |(m, w)| w * at(m)))
+                .collect();
+            // The mandible's motion at slider +1 (−1 is the full activation).
+            let mode = match MuscleKind::from_id(id).map(MuscleKind::generator) {
+                Some(Generator::Jaw(mode)) => Some(mode),
+                _ => None,
+            };
+            let bone = |p: DVec3| {
+                mode.map_or(DVec3::ZERO, |mode| {
+                    let q = rig.canonical_from_input.transform_point3(p);
+                    -input_from_canonical.transform_vector3(jaw.activation(mode, q, mm))
+                })
+            };
+            for v in 0..n {
+                match follow[v] {
+                    Follow::Jaw(share) => out[v] = share * bone(scene.positions[v]),
+                    Follow::Skin(s) => out[v] = out[s as usize],
+                    Follow::Still => {}
+                }
+            }
+            out
+        })
+        .collect();
+    MuscleBasis {
+        muscle_ids: face.muscle_ids.clone(),
+        neutral: scene.positions.clone(),
+        triangles: scene.triangles.clone(),
+        displacements,
+    }
+}
+
+/// The part of each scene vertex (`None`: used by no triangle).
+fn vertex_kinds(parts: &HeadParts, n: usize) -> Vec<Option<PartKind>> {
+    let mut kinds = vec![None; n];
+    for (c, k) in parts.components.iter().zip(&parts.kinds) {
+        for &v in &c.vertices {
+            kinds[v as usize] = Some(*k);
+        }
+    }
+    kinds
+}
+
+/// The candidate nearest to `p` (positions by `at`) and its distance.
+fn nearest(candidates: &[u32], at: impl Fn(u32) -> DVec3, p: DVec3) -> Option<(u32, f64)> {
+    candidates
+        .iter()
+        .map(|&c| (c, at(c).distance_squared(p)))
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+        .map(|(c, d2)| (c, d2.sqrt()))
+}
+
+/// What a vertex that is not simulated skin follows.
+#[derive(Clone, Copy, Debug)]
+enum Follow {
+    /// Nothing (or, for skin, its own weighted border vertex).
+    Still,
+    /// This share of the jaw's rigid motion.
+    Jaw(f64),
+    /// The skin vertex it lies nearest.
+    Skin(u32),
+}
+
+/// The two rows of teeth, for the gums' and tongue's share of the jaw's motion.
+struct Rows {
+    upper: Vec<DVec3>,
+    lower: Vec<DVec3>,
+}
+
+impl Rows {
+    fn new(scene: &Scene, kind_of: &[Option<PartKind>]) -> Rows {
+        let of = |k: PartKind| -> Vec<DVec3> {
+            (0..kind_of.len())
+                .filter(|&v| kind_of[v] == Some(k))
+                .map(|v| scene.positions[v])
+                .collect()
+        };
+        Rows {
+            upper: of(PartKind::UpperTooth),
+            lower: of(PartKind::LowerTooth),
+        }
+    }
+
+    /// How much of the jaw's motion a point of the gums or tongue takes: its distance to the
+    /// upper row over the sum of its distances to both rows (none without a lower row).
+    fn lower_share(&self, p: DVec3) -> f64 {
+        let d = |row: &[DVec3]| {
+            row.iter()
+                .map(|q| q.distance_squared(p))
+                .fold(f64::INFINITY, f64::min)
+                .sqrt()
+        };
+        let (up, low) = (d(&self.upper), d(&self.lower));
+        match (up.is_finite(), low.is_finite()) {
+            (true, true) if up + low > 0.0 => up / (up + low),
+            (false, true) => 1.0,
+            _ => 0.0,
+        }
+    }
+}
