@@ -11,39 +11,25 @@ use face_prep::parts::{HeadParts, PartKind, Scene, find_parts};
 pub struct WholeFile {
     /// The file as read.
     pub scene: Scene,
-    /// Its parts, or why they make no head (two skins, ...).
-    pub parts: Result<HeadParts, face_prep::parts::PartsError>,
+    /// Its parts (two eyeballs among them).
+    pub parts: HeadParts,
 }
 
 impl WholeFile {
-    /// Reads `path` whole; `None` unless it holds several components and two of them are
-    /// eyeballs (then the face reader's own error is the one to show: a file of loose
-    /// triangles is not a head).
+    /// Reads `path` whole; `None` unless two of its components are eyeballs (then the face
+    /// reader's own error is the one to show: a file of loose triangles is not a head).
     pub fn read(path: &Path) -> Option<WholeFile> {
         let scene = Scene::read(path, &face_prep::InputLimits::default()).ok()?;
-        if scene.components().len() < 2 {
-            return None;
-        }
         let parts = find_parts(&scene).ok().filter(|p| p.eyeballs.is_some())?;
-        Some(WholeFile {
-            scene,
-            parts: Ok(parts),
-        })
+        Some(WholeFile { scene, parts })
     }
 
     /// The parts in a few words: `skin, 2 eyeballs, 16 upper and 16 lower teeth, ...`.
     pub fn summary(&self) -> String {
-        let Ok(parts) = &self.parts else {
-            return String::new();
-        };
-        let count = |f: &dyn Fn(PartKind) -> bool| parts.kinds.iter().filter(|k| f(**k)).count();
-        let eyes = usize::from(parts.eyeballs.is_some()) * 2;
-        let upper = count(&|k| k == PartKind::UpperTooth);
-        let lower = count(&|k| k == PartKind::LowerTooth);
-        let mut words = vec!["skin".to_owned()];
-        if eyes > 0 {
-            words.push("2 eyeballs".into());
-        }
+        let count = |kind: PartKind| self.parts.kinds.iter().filter(|k| **k == kind).count();
+        let upper = count(PartKind::UpperTooth);
+        let lower = count(PartKind::LowerTooth);
+        let mut words = vec!["skin".to_owned(), "2 eyeballs".to_owned()];
         if upper + lower > 0 {
             words.push(format!("{upper} upper and {lower} lower teeth"));
         }
@@ -52,7 +38,7 @@ impl WholeFile {
             (PartKind::LidPart, "lid parts"),
             (PartKind::Other, "other parts"),
         ] {
-            let n = count(&|k| k == kind);
+            let n = count(kind);
             if n > 0 {
                 words.push(format!("{n} {name}"));
             }
@@ -62,16 +48,13 @@ impl WholeFile {
 
     /// The one line that refuses the file.
     pub fn refusal(&self, path: &Path) -> String {
-        match &self.parts {
-            Ok(parts) => format!(
-                "{}: a head or avatar of {} parts ({}); `facebem export` rigs its front face and \
-                 carries the rig to every part, but rig, pose, sheet and the viewer take one face \
-                 (four openings: contour, eyes, mouth), not a whole head yet",
-                path.display(),
-                parts.components.len(),
-                self.summary()
-            ),
-            Err(e) => format!("{}: {e}", path.display()),
-        }
+        format!(
+            "{}: a head or avatar of {} parts ({}); `facebem export` rigs its front face and \
+             carries the rig to every part, but rig, pose, sheet and the viewer take one face \
+             (four openings: contour, eyes, mouth), not a whole head yet",
+            path.display(),
+            self.parts.components.len(),
+            self.summary()
+        )
     }
 }

@@ -33,10 +33,7 @@ pub(crate) fn export_head(
             whole.summary()
         );
     }
-    let parts = match &whole.parts {
-        Ok(parts) => parts,
-        Err(e) => bail!("{}: {e}", path.display()),
-    };
+    let parts = &whole.parts;
     let front =
         front_face(&whole.scene, parts).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
     let mesh = face_prep::FaceMesh::from_triangles(&front.positions, &front.triangles)

@@ -301,7 +301,8 @@ pub(crate) fn whole_file_parts(
         return e.into();
     };
     let refusal = whole.refusal(file);
-    if let (true, Ok(parts)) = (describe, &whole.parts) {
+    if describe {
+        let parts = &whole.parts;
         if crate::json::mode() {
             let report = crate::json::parts_report(file, &whole.scene, parts, &refusal);
             crate::json::print(&report);

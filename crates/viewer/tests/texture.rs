@@ -22,14 +22,7 @@ const BLUE: [u8; 3] = [50, 80, 220];
 /// vertices are split by a seam while the checker stays continuous), `face.mtl`, `checker.png`.
 fn textured_face(dir: &Path) -> PathBuf {
     let text = std::fs::read_to_string(viewer::source::default_face_path()).unwrap();
-    let v: Vec<[f64; 3]> = text
-        .lines()
-        .filter_map(|l| l.strip_prefix("v "))
-        .map(|l| {
-            let x: Vec<f64> = l.split_whitespace().map(|w| w.parse().unwrap()).collect();
-            [x[0], x[1], x[2]]
-        })
-        .collect();
+    let v = v_lines(&text);
     let (lo, hi) = v
         .iter()
         .fold(([f64::MAX; 2], [f64::MIN; 2]), |(lo, hi), p| {
@@ -83,6 +76,17 @@ fn textured_face(dir: &Path) -> PathBuf {
     let path = dir.join("face.obj");
     std::fs::write(&path, obj).unwrap();
     path
+}
+
+/// The positions of an OBJ text's `v` lines.
+fn v_lines(text: &str) -> Vec<[f64; 3]> {
+    text.lines()
+        .filter_map(|l| l.strip_prefix("v "))
+        .map(|l| {
+            let x: Vec<f64> = l.split_whitespace().map(|w| w.parse().unwrap()).collect();
+            [x[0], x[1], x[2]]
+        })
+        .collect()
 }
 
 fn harness_opening(path: &Path, cache: &Path) -> egui_kittest::Harness<'static, viewer::ViewerApp> {
@@ -266,15 +270,7 @@ fn smile_like_the_command_line(
     assert_eq!(harness.state().sliders(), &sliders[..]);
     let posed_obj = dir.join("smile.obj");
     model.write_obj(&posed_obj, &sliders).unwrap();
-    let cli: Vec<[f64; 3]> = std::fs::read_to_string(&posed_obj)
-        .unwrap()
-        .lines()
-        .filter_map(|l| l.strip_prefix("v "))
-        .map(|l| {
-            let x: Vec<f64> = l.split_whitespace().map(|w| w.parse().unwrap()).collect();
-            [x[0], x[1], x[2]]
-        })
-        .collect();
+    let cli = v_lines(&std::fs::read_to_string(&posed_obj).unwrap());
     let size = viewer::posed_mesh::bounding_sphere(&basis.neutral)
         .unwrap()
         .1;
