@@ -13,18 +13,33 @@
 //!   control. **Gums and tongue** take that motion in the share of their distance to the upper
 //!   row over their distances to both rows (the lower gums and the tongue's floor with the jaw,
 //!   the upper gums still).
-//! - **Upper teeth and eyeballs** stay still (the skull; eye rotations are not modelled yet).
+//! - **Upper teeth and eyeballs** stay still in every control (the skull); the eyeballs turn
+//!   in the gaze targets ([`super::gaze`]).
 //! - **Lid parts and other parts** follow the nearest skin vertex.
+//!
+//! Besides the controls' fields, [`HeadBasis::named_fields`] holds the targets no control
+//! makes: ARKit's eight `eyeLook*` and VRM's four `look*` when there are eyeballs
+//! ([`super::gaze`]), ARKit's `tongueOut` when there is a tongue ([`super::tongue`]).
 
 use face_prep::parts::{FrontFace, HeadParts, PartKind, Scene};
 use face_prep::{FaceMesh, FaceRig, Generator, MuscleKind};
 use glam::DVec3;
 
+use super::{gaze, tongue};
 use crate::model::MuscleBasis;
 
 /// Distance over which the displacement of the skin outside the front face falls to zero, in
 /// interocular distances.
 pub const FALLOFF: f64 = 0.25;
+
+/// A whole head's responses: one field per control, and the named targets no control makes.
+#[derive(Clone, Debug, PartialEq)]
+pub struct HeadBasis {
+    /// Every control's field on every vertex of the head.
+    pub basis: MuscleBasis,
+    /// (standard name, field at weight 1 on every vertex): the gaze targets and `tongueOut`.
+    pub named_fields: Vec<(String, Vec<DVec3>)>,
+}
 
 /// The basis of the whole `scene` (its positions and triangles, every part) from the basis
 /// `face` of the front face `front` (read as `mesh`, rigged as `rig`).
@@ -35,7 +50,7 @@ pub fn carry_to_head(
     mesh: &FaceMesh,
     rig: &FaceRig,
     face: &MuscleBasis,
-) -> MuscleBasis {
+) -> HeadBasis {
     let n = scene.positions.len();
     let kind_of = vertex_kinds(parts, n);
     // Scene vertex → the face mesh's vertex.
@@ -119,12 +134,99 @@ pub fn carry_to_head(
             out
         })
         .collect();
-    MuscleBasis {
+    let basis = MuscleBasis {
         muscle_ids: face.muscle_ids.clone(),
         neutral: scene.positions.clone(),
         triangles: scene.triangles.clone(),
         displacements,
+    };
+    let mut named_fields = gaze_fields(scene, parts, &kind_of, &follow);
+    named_fields.extend(tongue_out(scene, &kind_of, parts, &basis, iod));
+    HeadBasis {
+        basis,
+        named_fields,
     }
+}
+
+/// ARKit's eight gaze targets and VRM's four, with lid parts following the skin (none without
+/// eyeballs and the head's frame).
+fn gaze_fields(
+    scene: &Scene,
+    parts: &HeadParts,
+    kind_of: &[Option<PartKind>],
+    follow: &[Follow],
+) -> Vec<(String, Vec<DVec3>)> {
+    let (Some(eyeballs), Some(frame)) = (parts.eyeballs, parts.frame) else {
+        return Vec::new();
+    };
+    let arkit: Vec<(String, Vec<DVec3>)> = gaze::ARKIT_GAZE
+        .iter()
+        .map(|&(name, side, look)| {
+            let mut field =
+                gaze::look_field(&scene.positions, kind_of, &frame, eyeballs, side, look);
+            for (v, f) in follow.iter().enumerate() {
+                if let Follow::Skin(s) = f {
+                    field[v] = field[*s as usize];
+                }
+            }
+            (name.to_string(), field)
+        })
+        .collect();
+    let sum = |names: [&str; 2]| {
+        let mut out = vec![DVec3::ZERO; scene.positions.len()];
+        for (_, field) in arkit.iter().filter(|(n, _)| names.contains(&n.as_str())) {
+            for (o, f) in out.iter_mut().zip(field) {
+                *o += *f;
+            }
+        }
+        out
+    };
+    let vrm: Vec<(String, Vec<DVec3>)> = gaze::VRM_GAZE
+        .iter()
+        .map(|&(name, of)| (name.to_string(), sum(of)))
+        .collect();
+    arkit.into_iter().chain(vrm).collect()
+}
+
+/// `tongueOut`: the jaw opened by [`tongue::TONGUE_OUT_JAW`] of `jawOpen` plus the tongue's
+/// protrusion; `None` without a jaw control or a tongue.
+fn tongue_out(
+    scene: &Scene,
+    kind_of: &[Option<PartKind>],
+    parts: &HeadParts,
+    basis: &MuscleBasis,
+    iod: f64,
+) -> Option<(String, Vec<DVec3>)> {
+    let frame = parts.frame?;
+    let open = basis.muscle_ids.iter().position(|id| id == "jaw_open")?;
+    // Slider −1 opens the jaw.
+    let jaw: Vec<DVec3> = basis.displacements[open]
+        .iter()
+        .map(|d| -tongue::TONGUE_OUT_JAW * *d)
+        .collect();
+    let of = |k: PartKind| -> Vec<u32> {
+        (0..kind_of.len() as u32)
+            .filter(|&v| kind_of[v as usize] == Some(k))
+            .collect()
+    };
+    let (gums, upper, lower) = (
+        of(PartKind::GumsAndTongue),
+        of(PartKind::UpperTooth),
+        of(PartKind::LowerTooth),
+    );
+    let mouth = tongue::Mouth {
+        positions: &scene.positions,
+        triangles: &scene.triangles,
+        gums_and_tongue: &gums,
+        upper_teeth: &upper,
+        lower_teeth: &lower,
+        up: frame.up,
+        forward: frame.forward,
+        iod,
+    };
+    let push = tongue::protrusion(&mouth, &jaw)?;
+    let field = jaw.iter().zip(&push).map(|(j, p)| *j + *p).collect();
+    Some(("tongueOut".to_string(), field))
 }
 
 /// The part of each scene vertex (`None`: used by no triangle).
@@ -179,8 +281,16 @@ impl Rows {
     }
 
     /// How much of the jaw's motion a point of the gums or tongue takes: its distance to the
-    /// upper row over the sum of its distances to both rows (none without a lower row).
+    /// upper row over the sum of its distances to both rows (none without a lower row),
+    /// through a smoothstep from 0.25 to 0.75, so that the gums at a tooth go wholly with its
+    /// row.
     fn lower_share(&self, p: DVec3) -> f64 {
+        let t = ((self.linear_share(p) - 0.25) / 0.5).clamp(0.0, 1.0);
+        t * t * (3.0 - 2.0 * t)
+    }
+
+    /// Distance to the upper row over the sum of the distances to both rows.
+    fn linear_share(&self, p: DVec3) -> f64 {
         let d = |row: &[DVec3]| {
             row.iter()
                 .map(|q| q.distance_squared(p))

@@ -7,7 +7,9 @@
 //! the copy does not hold follow the commissure.
 
 mod carry;
+pub mod gaze;
 pub mod head;
+pub mod tongue;
 
 use glam::DVec3;
 use rayon::prelude::*;

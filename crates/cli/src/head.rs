@@ -57,7 +57,7 @@ pub(crate) fn export_head(
     );
     let (model, _) = compute(&mesh, None, params, solver.no_cache)?;
     check_trust(&model, force)?;
-    let basis = facebem::transfer::head::carry_to_head(
+    let head = facebem::transfer::head::carry_to_head(
         &whole.scene,
         parts,
         &front,
@@ -67,10 +67,12 @@ pub(crate) fn export_head(
     );
     let identity: Vec<Option<u32>> = (0..whole.scene.positions.len() as u32).map(Some).collect();
     let layout = facebem::export::ExportLayout::from_obj(&text, &identity)?;
+    let basis = head.basis;
     let warnings = materials.warnings.clone();
     let params = facebem::export::GltfParams {
         format: facebem::export::GltfFormat::from_path(gltf),
         materials: Some(materials),
+        named_fields: head.named_fields,
         ..model.gltf_params(&gltf_params)
     };
     let (bytes, summary) = facebem::export::build_gltf(&basis, &layout, &params)?;

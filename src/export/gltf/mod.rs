@@ -149,6 +149,12 @@ pub struct GltfParams {
     /// primitive per material with its colour and embedded texture; `None` (or none used):
     /// one primitive with [`MATERIAL_NAME`].
     pub materials: Option<crate::export::material::ObjMaterials>,
+    /// Fields for names no control makes ([`crate::expressions::NOT_MODELLED`]: the gaze
+    /// targets and `tongueOut` of a head with eyeballs and a tongue,
+    /// [`crate::transfer::head::HeadBasis::named_fields`]): (standard name, displacement of
+    /// every basis vertex at weight 1). Written in the standard's order when the name's set is
+    /// exported; any other name, or a field of the wrong length, is an error.
+    pub named_fields: Vec<(String, Vec<glam::DVec3>)>,
 }
 
 impl Default for GltfParams {
@@ -165,6 +171,7 @@ impl Default for GltfParams {
             arkit_naming: ArkitNaming::Swift,
             compress: false,
             materials: None,
+            named_fields: Vec::new(),
         }
     }
 }
@@ -200,6 +207,20 @@ pub enum GltfExportError {
         expected: usize,
         /// Vectors found.
         got: usize,
+    },
+    /// A named field ([`GltfParams::named_fields`]) is for a name controls make, or no
+    /// standard's name.
+    #[error("{0:?} is not a name that only a named field makes (the gaze targets, tongueOut)")]
+    NotANamedField(String),
+    /// A named field does not have one vector per vertex.
+    #[error("the field of {name} has {len} vectors for {vertices} vertices")]
+    NamedFieldLength {
+        /// The standard name.
+        name: String,
+        /// Vectors found.
+        len: usize,
+        /// Vertex count.
+        vertices: usize,
     },
     /// A number to write is NaN or infinite once converted to f32 (glTF's float): a position,
     /// normal, texture coordinate, displacement or animation value.
@@ -530,6 +551,18 @@ fn check(
     }
     if !(params.metres_per_unit.is_finite() && params.metres_per_unit > 0.0) {
         return Err(GltfExportError::BadUnit(params.metres_per_unit));
+    }
+    for (name, field) in &params.named_fields {
+        if crate::expressions::not_modelled(name).is_none_or(|(n, _)| n != name) {
+            return Err(GltfExportError::NotANamedField(name.clone()));
+        }
+        if field.len() != n {
+            return Err(GltfExportError::NamedFieldLength {
+                name: name.clone(),
+                len: field.len(),
+                vertices: n,
+            });
+        }
     }
     for (t, tri) in basis.triangles.iter().enumerate() {
         if let Some(&v) = tri.iter().find(|&&v| v as usize >= n) {

@@ -52,16 +52,30 @@ pub(super) fn morph_targets(
     let (named, left_out) = expressions::for_rig(params.names, &basis.muscle_ids);
     let mut partial = Map::new();
     let spelled = |name: &str| params.arkit_naming.name(name);
+    // The controls' expressions and the named fields, in the standards' order.
+    let mut standard: Vec<(NameSet, &str, Vec<DVec3>)> = Vec::new();
     for r in &named {
         let e = r.expression;
         if !r.resolved.missing.is_empty() {
             partial.insert(spelled(e.name), json!(r.resolved.missing));
         }
-        if e.set == NameSet::Vrm && !params.names.facebem && e.name != "neutral" {
-            clip_targets.push((e.name.to_string(), targets.len()));
+        standard.push((e.set, e.name, field_of(basis, &r.resolved.sliders)));
+    }
+    let mut fielded = std::collections::HashSet::new();
+    for (name, field) in &params.named_fields {
+        let set = set_of(name);
+        if params.names.contains(set) {
+            fielded.insert(name.as_str());
+            standard.push((set, name.as_str(), field.clone()));
         }
-        targets.push((spelled(e.name), field_of(basis, &r.resolved.sliders)));
-        always.push(e.set == NameSet::Arkit);
+    }
+    standard.sort_by_key(|(set, name, _)| standard_order(*set, name));
+    for (set, name, field) in standard {
+        if set == NameSet::Vrm && !params.names.facebem && name != "neutral" {
+            clip_targets.push((name.to_string(), targets.len()));
+        }
+        targets.push((spelled(name), field));
+        always.push(set == NameSet::Arkit);
     }
     let mut left_out_json = Map::new();
     for (e, controls) in &left_out {
@@ -71,12 +85,8 @@ pub(super) fn morph_targets(
         );
     }
     for (name, why) in expressions::NOT_MODELLED {
-        let set = if expressions::arkit::NAMES.contains(&name) {
-            NameSet::Arkit
-        } else {
-            NameSet::Vrm
-        };
-        if params.names.contains(set) {
+        let set = set_of(name);
+        if params.names.contains(set) && !fielded.contains(name) {
             left_out_json.insert(spelled(name), json!(format!("not modelled: {why}")));
         }
     }
@@ -107,6 +117,24 @@ pub(super) fn morph_targets(
         same_as: repeats.same_as,
         negative_of: repeats.negative_of,
     })
+}
+
+/// The standard a name of [`expressions::NOT_MODELLED`] (or any ARKit or VRM name) is of.
+fn set_of(name: &str) -> NameSet {
+    if expressions::arkit::NAMES.contains(&name) {
+        NameSet::Arkit
+    } else {
+        NameSet::Vrm
+    }
+}
+
+/// A named target's place in an export: ARKit's names in ARKit's order, then VRM's.
+fn standard_order(set: NameSet, name: &str) -> usize {
+    let (base, names): (usize, &[&str]) = match set {
+        NameSet::Arkit => (0, &expressions::arkit::NAMES),
+        _ => (expressions::arkit::NAMES.len(), &expressions::vrm::NAMES),
+    };
+    base + names.iter().position(|n| *n == name).unwrap_or(names.len())
 }
 
 /// The targets that remain once every repeat is left out ([`leave_out_repeats`]).
