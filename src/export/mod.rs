@@ -1,12 +1,14 @@
 //! Exports: OBJ of any pose ([`obj`]) and glTF 2.0 with one morph target per muscle action and
 //! preset ([`gltf`]), in the user's own vertex layout ([`layout`]) and with the source's
-//! licence ([`attribution`]). Files are written atomically.
+//! licence ([`attribution`]); a whole head's GLB or VRM comes back as itself with the targets
+//! added ([`user_gltf`]). Files are written atomically.
 
 pub mod attribution;
 pub mod gltf;
 pub mod layout;
 pub mod material;
 pub mod obj;
+pub mod user_gltf;
 
 use glam::DVec3;
 use std::path::Path;

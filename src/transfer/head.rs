@@ -58,6 +58,13 @@ pub fn carry_to_head(
     for (i, &v) in front.scene_vertex.iter().enumerate() {
         in_face[v as usize] = mesh.input_to_vertex.get(i).copied().flatten();
     }
+    // The copies of a face vertex (a glTF's UV seams) are in the face too.
+    let first = scene.first_at_same_place();
+    for v in 0..n {
+        if in_face[v].is_none() && kind_of[v] == Some(PartKind::Skin) {
+            in_face[v] = first.get(v).and_then(|&f| in_face[f as usize]);
+        }
+    }
     let border: Vec<u32> = face_prep::topology::validate(&mesh.vertices, &mesh.triangles)
         .map(|loops| loops.into_iter().flatten().collect())
         .unwrap_or_default();

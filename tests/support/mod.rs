@@ -76,6 +76,13 @@ pub fn load_with_threejs_running(file: &Path, snippet: &Path) -> Validation {
     run_node_script("three_load.mjs", file, &[snippet])
 }
 
+/// Loads the VRM `file` with three.js and three-vrm (npm `@pixiv/three-vrm`, pinned by the same
+/// lock file) and reports how far each of `expressions` moves it (`tests/support/three_vrm.mjs`).
+pub fn load_with_three_vrm(file: &Path, expressions: &[&str]) -> Validation {
+    let names: Vec<&Path> = expressions.iter().map(Path::new).collect();
+    run_node_script("three_vrm.mjs", file, &names)
+}
+
 /// Runs `tests/support/<script> <npm dir> <file> <extra>…` with node and parses its JSON
 /// output.
 fn run_node_script(script: &str, file: &Path, extra: &[&Path]) -> Validation {
@@ -92,12 +99,14 @@ fn run_node_script(script: &str, file: &Path, extra: &[&Path]) -> Validation {
         let _guard = VALIDATOR_INSTALL
             .lock()
             .unwrap_or_else(|poisoned| poisoned.into_inner());
-        let installed = ["gltf-validator", "three"].iter().all(|p| {
-            dir.join("node_modules")
-                .join(p)
-                .join("package.json")
-                .exists()
-        });
+        let installed = ["gltf-validator", "three", "@pixiv/three-vrm"]
+            .iter()
+            .all(|p| {
+                dir.join("node_modules")
+                    .join(p)
+                    .join("package.json")
+                    .exists()
+            });
         if !installed {
             let status = Command::new("npm")
                 .args(["ci", "--no-audit", "--no-fund"])

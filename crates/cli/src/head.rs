@@ -27,17 +27,8 @@ pub(crate) fn export_head(
         .and_then(|e| e.to_str())
         .is_some_and(|e| e.eq_ignore_ascii_case("obj"));
     if !is_obj {
-        bail!(
-            "{}: a glTF head is not exported yet (an OBJ head is): {}",
-            path.display(),
-            whole.summary()
-        );
+        return export_glb_head(path, gltf, whole, gltf_params, params, solver, force);
     }
-    let parts = &whole.parts;
-    let front =
-        front_face(&whole.scene, parts).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
-    let mesh = face_prep::FaceMesh::from_triangles(&front.positions, &front.triangles)
-        .with_context(|| format!("{}: its front face", path.display()))?;
     let limits = face_prep::InputLimits::default();
     let bytes = face_prep::limits::read_input_file(path, &limits)?;
     let text = String::from_utf8_lossy(&bytes).into_owned();
@@ -48,23 +39,8 @@ pub(crate) fn export_head(
     let materials = facebem::export::material::ObjMaterials::load(&text, folder)?;
     let mut inputs: Vec<&Path> = vec![path];
     inputs.extend(materials.files_read.iter().map(PathBuf::as_path));
-    facebem::check_output(gltf, &inputs, &["glb", "gltf"], "a glTF export")?;
-    outln!(
-        "{} is a head ({}): rigging its front face ({} triangles) first",
-        path.display(),
-        whole.summary(),
-        mesh.triangles.len()
-    );
-    let (model, _) = compute(&mesh, None, params, solver.no_cache)?;
-    check_trust(&model, force)?;
-    let head = facebem::transfer::head::carry_to_head(
-        &whole.scene,
-        parts,
-        &front,
-        &model.mesh,
-        &model.rig,
-        &model.basis,
-    );
+    facebem::check_output(gltf, &inputs, &["glb", "gltf"], "an OBJ head's glTF export")?;
+    let (model, head) = rig_head(path, &whole, params, solver, force)?;
     let identity: Vec<Option<u32>> = (0..whole.scene.positions.len() as u32).map(Some).collect();
     let layout = facebem::export::ExportLayout::from_obj(&text, &identity)?;
     let basis = head.basis;
@@ -88,4 +64,85 @@ pub(crate) fn export_head(
         summary.bytes as f64 / 1000.0
     );
     Ok(())
+}
+
+/// Exports the GLB or VRM head read as `whole` from `path` to `out`: the user's own file with
+/// the targets added to every mesh that moves ([`facebem::export::user_gltf::add_targets`]).
+fn export_glb_head(
+    path: &Path,
+    out: &Path,
+    whole: WholeFile,
+    gltf_params: facebem::export::GltfParams,
+    params: &facebem::PipelineParams,
+    solver: &SolverArgs,
+    force: bool,
+) -> Result<()> {
+    let limits = face_prep::InputLimits::default();
+    let bytes = face_prep::limits::read_input_file(path, &limits)?;
+    if bytes.get(0..4) != Some(b"glTF".as_slice()) {
+        bail!(
+            "{}: a .gltf head is not written back (a .glb or .vrm is): save it as .glb first",
+            path.display()
+        );
+    }
+    facebem::check_output(out, &[path], &["glb", "vrm"], "a GLB or VRM head")?;
+    let (model, head) = rig_head(path, &whole, params, solver, force)?;
+    let params = facebem::export::GltfParams {
+        named_fields: head.named_fields,
+        ..model.gltf_params(&gltf_params)
+    };
+    let named = facebem::export::gltf::named_targets(&head.basis, &params)?;
+    let (glb, added) = facebem::export::user_gltf::add_targets(
+        &bytes,
+        &whole.scene,
+        &named.targets,
+        &named.same_as,
+    )
+    .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+    facebem::write_atomic(out, &glb)?;
+    outln!(
+        "{}: {} morph targets added to {} of its meshes{}, {:.0} KB",
+        out.display(),
+        named.targets.len(),
+        added.meshes.len(),
+        if added.vrm_expressions.is_empty() {
+            String::new()
+        } else {
+            format!(", {} VRM expressions bound", added.vrm_expressions.len())
+        },
+        glb.len() as f64 / 1000.0
+    );
+    Ok(())
+}
+
+/// Cuts the front face of the head `whole` (read from `path`), rigs it and carries the rig to
+/// every vertex of the head.
+fn rig_head(
+    path: &Path,
+    whole: &WholeFile,
+    params: &facebem::PipelineParams,
+    solver: &SolverArgs,
+    force: bool,
+) -> Result<(facebem::FaceModel, facebem::transfer::head::HeadBasis)> {
+    let front = front_face(&whole.scene, &whole.parts)
+        .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+    let mesh = face_prep::FaceMesh::from_triangles(&front.positions, &front.triangles)
+        .with_context(|| format!("{}: its front face", path.display()))?;
+    outln!(
+        "{} is a head ({}): rigging its front face ({} triangles) first",
+        path.display(),
+        whole.summary(),
+        mesh.triangles.len()
+    );
+    let (model, _) = compute(&mesh, None, params, solver.no_cache)?;
+    check_trust(&model, force)?;
+    let head = facebem::transfer::head::carry_to_head(
+        &whole.scene,
+        &whole.parts,
+        &front,
+        &model.mesh,
+        &model.rig,
+        &model.basis,
+    );
+    Ok((model, head))
 }

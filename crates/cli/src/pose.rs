@@ -104,7 +104,12 @@ pub(crate) fn export(
 ) -> Result<()> {
     let started = std::time::Instant::now();
     let params = pipeline_params(solver)?;
-    facebem::check_output(gltf, &[rig], &["glb", "gltf"], "a glTF export")?;
+    // `.vrm` only for a head read whole (its own file written back, export_glb_head).
+    let vrm = gltf
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("vrm"));
+    let allowed: &[&str] = if vrm { &["vrm"] } else { &["glb", "gltf"] };
+    facebem::check_output(gltf, &[rig], allowed, "a glTF export")?;
     let opened = match crate::open_face(rig) {
         Ok(opened) => opened,
         // A whole head: its front face rigged, the rig carried to every part.
@@ -118,6 +123,7 @@ pub(crate) fn export(
         }
         Err(e) => return Err(e.into()),
     };
+    facebem::check_output(gltf, &[rig], &["glb", "gltf"], "a glTF export of a face")?;
     // The OBJ's own materials and textures, read from its folder (a rig file's: the folder it
     // is in) before any work; they are inputs the output must not overwrite.
     let obj_text = match &opened {

@@ -37,6 +37,7 @@ mod summary;
 mod targets;
 
 pub use summary::{GltfSummary, build_gltf};
+pub use targets::{NamedTargets, named_targets};
 
 use glam::DVec3;
 use serde_json::{Map, Value, json};
@@ -552,6 +553,22 @@ fn check(
     if !(params.metres_per_unit.is_finite() && params.metres_per_unit > 0.0) {
         return Err(GltfExportError::BadUnit(params.metres_per_unit));
     }
+    check_fields(basis, params)?;
+    for (t, tri) in basis.triangles.iter().enumerate() {
+        if let Some(&v) = tri.iter().find(|&&v| v as usize >= n) {
+            return Err(GltfExportError::IndexOutOfRange {
+                triangle: t,
+                vertex: v,
+                count: n,
+            });
+        }
+    }
+    check_layout(layout, n)
+}
+
+/// The controls' and the named fields' lengths and names.
+fn check_fields(basis: &MuscleBasis, params: &GltfParams) -> Result<(), GltfExportError> {
+    let n = basis.neutral.len();
     for (name, field) in &params.named_fields {
         if crate::expressions::not_modelled(name).is_none_or(|(n, _)| n != name) {
             return Err(GltfExportError::NotANamedField(name.clone()));
@@ -564,15 +581,6 @@ fn check(
             });
         }
     }
-    for (t, tri) in basis.triangles.iter().enumerate() {
-        if let Some(&v) = tri.iter().find(|&&v| v as usize >= n) {
-            return Err(GltfExportError::IndexOutOfRange {
-                triangle: t,
-                vertex: v,
-                count: n,
-            });
-        }
-    }
     for (id, field) in basis.muscle_ids.iter().zip(&basis.displacements) {
         if field.len() != n {
             return Err(GltfExportError::FieldLength {
@@ -582,6 +590,11 @@ fn check(
             });
         }
     }
+    Ok(())
+}
+
+/// The layout fits a basis of `n` vertices.
+fn check_layout(layout: &ExportLayout, n: usize) -> Result<(), GltfExportError> {
     let m = layout.len();
     let lengths_fit = layout.positions.len() == m
         && layout.input_index.len() == m

@@ -39,6 +39,48 @@ fn field_of(basis: &MuscleBasis, sliders: &[f64]) -> Vec<DVec3> {
     delta
 }
 
+/// The targets an export of `basis` with `params` writes, in file order, and the names left
+/// out because they repeat one of them (for binding those names to it, as VRM expressions).
+#[derive(Clone, Debug, PartialEq)]
+pub struct NamedTargets {
+    /// (name, displacement of every basis vertex at weight 1), in file order.
+    pub targets: Vec<(String, Vec<DVec3>)>,
+    /// Left-out name → the written target it equals.
+    pub same_as: Vec<(String, String)>,
+}
+
+/// The targets [`super::export_gltf_layout`] would write for `basis` (no file is built).
+///
+/// ```
+/// use facebem::MuscleBasis;
+/// use facebem::export::gltf::{named_targets, GltfParams};
+/// use glam::DVec3;
+/// let basis = MuscleBasis {
+///     muscle_ids: vec!["zygomaticus_major_l".into()],
+///     neutral: vec![DVec3::ZERO, DVec3::X, DVec3::Y],
+///     triangles: vec![[0, 1, 2]],
+///     displacements: vec![vec![DVec3::ZERO, DVec3::Z * 0.1, DVec3::ZERO]],
+/// };
+/// let named = named_targets(&basis, &GltfParams::default()).unwrap();
+/// assert!(named.targets.iter().any(|(n, _)| n == "mouthSmileLeft"));
+/// ```
+pub fn named_targets(
+    basis: &MuscleBasis,
+    params: &GltfParams,
+) -> Result<NamedTargets, GltfExportError> {
+    super::check_fields(basis, params)?;
+    let made = morph_targets(basis, params)?;
+    let same_as = made
+        .same_as
+        .iter()
+        .map(|(k, v)| (k.clone(), v.as_str().unwrap_or_default().to_string()))
+        .collect();
+    Ok(NamedTargets {
+        targets: made.targets,
+        same_as,
+    })
+}
+
 /// The named (ARKit, VRM) targets, then facebem's own; fails when two share a name.
 pub(super) fn morph_targets(
     basis: &MuscleBasis,

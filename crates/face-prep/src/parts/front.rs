@@ -90,12 +90,16 @@ pub fn front_face(scene: &Scene, parts: &HeadParts) -> Result<FrontFace, FrontFa
         .collect();
     let lining = MOUTH_LINING * radius;
     let near_mouth = NearPoints::new(&mouth_parts, lining);
+    // A glTF's UV seams split the skin's vertices: the cut is made on the surface, each
+    // corner at the first vertex of its coordinates (Scene::first_at_same_place).
+    let first = scene.first_at_same_place();
     let kept: Vec<[u32; 3]> = parts
         .components
         .iter()
         .zip(&parts.kinds)
         .filter(|(_, k)| **k == PartKind::Skin)
         .flat_map(|(c, _)| c.triangles.iter().map(|&t| scene.triangles[t as usize]))
+        .map(|t| t.map(|v| first.get(v as usize).copied().unwrap_or(v)))
         .filter(|t| {
             let corners = t.map(p);
             let d = (corners[0] + corners[1] + corners[2]) / 3.0 - mid;

@@ -26,7 +26,7 @@ mod scene;
 mod sphere;
 
 pub use front::{FrontFace, FrontFaceError, front_face};
-pub use scene::{Component, Scene, VertexSource};
+pub use scene::{Component, GltfMeshPlacement, PrimitivePlacement, Scene, VertexSource};
 pub use sphere::{Sphere, fit_sphere};
 
 use glam::DVec3;
@@ -303,6 +303,19 @@ impl ComponentStats {
     fn new(scene: &Scene, c: &Component) -> Self {
         let p = |v: u32| scene.positions[v as usize];
         let (mut area, mut weighted) = (0.0, DVec3::ZERO);
+        // Closedness is the surface's, not its texture layout's: vertices at exactly the same
+        // coordinates (a UV seam's copies, in a glTF) are one. Regression: the ICT head as a
+        // GLB (seams split) had no closed eyeball.
+        let mut same: std::collections::HashMap<[u64; 3], u32> = Default::default();
+        let welded: std::collections::HashMap<u32, u32> = c
+            .vertices
+            .iter()
+            .map(|&v| {
+                let key = p(v).to_array().map(|x| (x + 0.0).to_bits());
+                (v, *same.entry(key).or_insert(v))
+            })
+            .collect();
+        let weld = |v: u32| welded.get(&v).copied().unwrap_or(v);
         let mut edges: std::collections::HashMap<(u32, u32), i32> = Default::default();
         for &t in &c.triangles {
             let [a, b, cc] = scene.triangles[t as usize];
@@ -310,6 +323,7 @@ impl ComponentStats {
             area += a2;
             weighted += a2 * (p(a) + p(b) + p(cc)) / 3.0;
             for (x, y) in [(a, b), (b, cc), (cc, a)] {
+                let (x, y) = (weld(x), weld(y));
                 *edges.entry((x.min(y), x.max(y))).or_default() += 1;
             }
         }

@@ -46,6 +46,29 @@ pub struct Scene {
     /// The names the file gives its polygons: OBJ `group/material` (or the one that is given),
     /// glTF `mesh/#material`.
     pub labels: Vec<String>,
+    /// glTF only: where each mesh's vertices are ([`GltfMeshPlacement`]), by mesh index.
+    pub gltf_meshes: Vec<GltfMeshPlacement>,
+}
+
+/// Where a glTF mesh's vertices are in a [`Scene`], and the transform they were read with.
+#[derive(Clone, Debug, PartialEq)]
+pub struct GltfMeshPlacement {
+    /// The world transform of the first node instantiating the mesh (identity if none).
+    pub world_from_mesh: glam::DMat4,
+    /// Per primitive, in order: its first scene vertex, its vertex count and its `POSITION`
+    /// accessor.
+    pub primitives: Vec<PrimitivePlacement>,
+}
+
+/// One primitive's vertices in a [`Scene`] ([`GltfMeshPlacement`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct PrimitivePlacement {
+    /// The scene index of its first vertex.
+    pub first: u32,
+    /// How many vertices it has (its `POSITION` accessor's count).
+    pub count: u32,
+    /// Its `POSITION` accessor (primitives may share one).
+    pub position_accessor: u32,
 }
 
 /// A connected component of a [`Scene`]: triangles joined through shared vertices (the same
@@ -157,6 +180,24 @@ impl Scene {
         for mesh in 0..mesh_labels.len() {
             let data = gltf_mesh_data(&mut doc, &mesh_labels, mesh, limits)?;
             let base = scene.positions.len() as u32;
+            let mut first = base;
+            let mut placement = GltfMeshPlacement {
+                world_from_mesh: doc
+                    .mesh_world_transform(mesh)?
+                    .unwrap_or(glam::DMat4::IDENTITY),
+                primitives: Vec::new(),
+            };
+            for (pos, _, _) in gltf_read::primitives(&doc.root, mesh) {
+                let Some(pos) = pos else { continue };
+                let count = doc.root.accessors.get(pos).map_or(0, |a| a.count.0 as u32);
+                placement.primitives.push(PrimitivePlacement {
+                    first,
+                    count,
+                    position_accessor: pos as u32,
+                });
+                first += count;
+            }
+            scene.gltf_meshes.push(placement);
             scene
                 .sources
                 .extend(
@@ -179,6 +220,27 @@ impl Scene {
             scene.check_triangles(limits)?;
         }
         Ok(scene)
+    }
+
+    /// For every vertex, the first vertex at exactly the same coordinates (itself when it is
+    /// the first): the copies a glTF's UV seams or split normals make are one point of the
+    /// surface.
+    ///
+    /// ```
+    /// use face_prep::parts::Scene;
+    /// let s = Scene::from_obj("v 0 0 0\nv 1 0 0\nv 0 0 0\n", &Default::default()).unwrap();
+    /// assert_eq!(s.first_at_same_place(), [0, 1, 0]);
+    /// ```
+    pub fn first_at_same_place(&self) -> Vec<u32> {
+        let mut first_at: HashMap<[u64; 3], u32> = HashMap::new();
+        self.positions
+            .iter()
+            .enumerate()
+            .map(|(i, p)| {
+                let key = p.to_array().map(|c| (c + 0.0).to_bits());
+                *first_at.entry(key).or_insert(i as u32)
+            })
+            .collect()
     }
 
     /// Appends a triangle with its label (interned in `index`).

@@ -11,8 +11,23 @@ fn le_u32(b: &[u8], at: usize) -> Option<u32> {
     Some(u32::from_le_bytes([s[0], s[1], s[2], s[3]]))
 }
 
-/// Splits a GLB into its JSON chunk and optional binary chunk.
-pub(super) fn split_glb(bytes: &[u8]) -> Result<(&[u8], Option<&[u8]>), GltfError> {
+/// Splits a GLB into its JSON chunk and optional binary chunk (the header's declared length
+/// bounds both; a truncated chunk is an error).
+///
+/// ```
+/// use face_prep::gltf_read::split_glb;
+/// let json = br#"{"asset":{"version":"2.0"}}    "#; // padded to 4 bytes
+/// let mut glb = b"glTF".to_vec();
+/// glb.extend(2u32.to_le_bytes());
+/// glb.extend((12 + 8 + json.len() as u32).to_le_bytes());
+/// glb.extend((json.len() as u32).to_le_bytes());
+/// glb.extend(0x4E4F_534Au32.to_le_bytes());
+/// glb.extend(json);
+/// let (j, bin) = split_glb(&glb).unwrap();
+/// assert_eq!(j, json);
+/// assert!(bin.is_none());
+/// ```
+pub fn split_glb(bytes: &[u8]) -> Result<(&[u8], Option<&[u8]>), GltfError> {
     let glb = |m: &str| GltfError::Glb(m.to_owned());
     let version = le_u32(bytes, 4).ok_or_else(|| glb("file shorter than the 12-byte header"))?;
     if version != 2 {

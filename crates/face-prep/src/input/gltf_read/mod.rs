@@ -33,5 +33,6 @@ pub use buffers::decode_base64;
 pub(crate) use document::Document;
 pub use document::MAX_NODE_DEPTH;
 pub use external::files_read_by;
+pub use glb::split_glb;
 pub use looks::{MaterialLook, material_looks};
 pub(crate) use meshes::{attribute, mesh_labels, primitives};
