@@ -30,6 +30,16 @@ if (process.argv[4]) {
   await new AsyncFunction('gltf', 'THREE', body)(gltf, THREE);
 }
 const meshes = [];
+// Positions and morph deltas are reported for files of up to 20 M numbers (a whole head's
+// targets would not fit in one JSON string); above that, `arraysOmitted` is true.
+let numbers = 0;
+gltf.scene.traverse((o) => {
+  if (o.isMesh) {
+    const g = o.geometry;
+    numbers += g.attributes.position.array.length * (1 + (g.morphAttributes.position ?? []).length);
+  }
+});
+const arraysOmitted = numbers > 20e6;
 gltf.scene.traverse((o) => {
   if (!o.isMesh) return;
   const g = o.geometry;
@@ -39,8 +49,8 @@ gltf.scene.traverse((o) => {
     attributes: Object.keys(g.attributes).sort(),
     morphTargets: Object.keys(o.morphTargetDictionary ?? {}),
     morphTargetInfluences: o.morphTargetInfluences ?? [],
-    positions: Array.from(g.attributes.position.array),
-    morphPositions: (g.morphAttributes.position ?? []).map((a) => Array.from(a.array)),
+    positions: arraysOmitted ? [] : Array.from(g.attributes.position.array),
+    morphPositions: arraysOmitted ? [] : (g.morphAttributes.position ?? []).map((a) => Array.from(a.array)),
     material: {
       type: o.material.type,
       name: o.material.name,
@@ -55,6 +65,7 @@ const size = box.getSize(new THREE.Vector3());
 console.log(
   JSON.stringify({
     revision: THREE.REVISION,
+    arraysOmitted,
     meshes,
     size: [size.x, size.y, size.z],
     animations: gltf.animations.map((a) => a.name),

@@ -64,6 +64,22 @@ fn a_head_looks_and_sticks_its_tongue_out() {
             "VRM {name}"
         );
     }
+    // three.js: every primitive (a three.js mesh each, one per material) resolves every name.
+    if let support::Validation::Report(r) = support::load_with_threejs(&glb) {
+        let meshes = r["meshes"].as_array().unwrap();
+        assert!(meshes.len() >= 10, "{} three.js meshes", meshes.len());
+        for m in meshes {
+            let names: Vec<&str> = m["morphTargets"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .filter_map(|n| n.as_str())
+                .collect();
+            for name in facebem::expressions::arkit::NAMES {
+                assert!(names.contains(&name), "three.js mesh {}: {name}", m["name"]);
+            }
+        }
+    }
     // Positions in mm (the OBJ is in cm), deltas in mm (the glTF is in metres).
     let v: Vec<V3> = support::obj_v_lines(&head)
         .into_iter()
