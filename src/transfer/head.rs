@@ -6,8 +6,8 @@
 //! - **The rest of the skin** (scalp, ears, neck, the eye sockets' and the mouth's linings):
 //!   the displacement of the nearest vertex on the front face's border, times a falloff that is
 //!   1 on the border and reaches 0 at [`FALLOFF`] interocular distances from it
-//!   (`1 − smoothstep`), so there is no seam where the simulated region ends and the back of
-//!   the head stays still.
+//!   (`1 − smoothstep`; the mouth's lining at [`LINING_FALLOFF`]), so there is no seam where
+//!   the simulated region ends and the back of the head stays still.
 //! - **Lower teeth**: the rig's own mandible ([`face_prep::jaw::Jaw::activation`]) in the jaw
 //!   controls — the same rigid motion the jaw's contour is given — and still in every other
 //!   control. **Gums and tongue** take that motion in the share of their distance to the upper
@@ -31,6 +31,17 @@ use crate::model::MuscleBasis;
 /// Distance over which the displacement of the skin outside the front face falls to zero, in
 /// interocular distances.
 pub const FALLOFF: f64 = 0.25;
+
+/// The mouth's lining (skin outside the front face within [`LINING_NEAR`] of the teeth, gums
+/// or tongue) is the inner surface of the lips and cheeks, which move as one: its displacement
+/// falls to zero over this many interocular distances instead of [`FALLOFF`]. On ICT-FaceKit's
+/// head against its captures (`cargo run --release -p facebem-tools --bin head_cosines`), the
+/// whole head's cosine in mouthSmile goes from 0.80 to 0.85 (the narrow face's: 0.86),
+/// mouthStretch 0.83 → 0.89 (0.91), mouthFrown 0.77 → 0.83 (0.85).
+pub const LINING_FALLOFF: f64 = 0.5;
+
+/// How near the teeth, gums or tongue (in interocular distances) skin is the mouth's lining.
+pub const LINING_NEAR: f64 = 0.1;
 
 /// A whole head's responses: one field per control, and the named targets no control makes.
 #[derive(Clone, Debug, PartialEq)]
@@ -72,6 +83,14 @@ pub fn carry_to_head(
         .eyeballs
         .map_or(1.0, |[l, r]| l.centre.distance(r.centre));
     let falloff = FALLOFF * iod;
+    let mouth_parts: Vec<u32> = (0..n as u32)
+        .filter(|&v| {
+            matches!(
+                kind_of[v as usize],
+                Some(PartKind::UpperTooth | PartKind::LowerTooth | PartKind::GumsAndTongue)
+            )
+        })
+        .collect();
     // Each skin vertex outside the face: its border vertex and weight.
     let skin_source: Vec<Option<(u32, f64)>> = (0..n)
         .map(|v| {
@@ -83,7 +102,14 @@ pub fn carry_to_head(
             }
             let p = scene.positions[v];
             let (b, d) = nearest(&border, |b| mesh.vertices[b as usize], p)?;
-            let t = (d / falloff).clamp(0.0, 1.0);
+            let lining = nearest(&mouth_parts, |m| scene.positions[m as usize], p)
+                .is_some_and(|(_, to_teeth)| to_teeth < LINING_NEAR * iod);
+            let reach = if lining {
+                LINING_FALLOFF * iod
+            } else {
+                falloff
+            };
+            let t = (d / reach).clamp(0.0, 1.0);
             let w = 1.0 - t * t * (3.0 - 2.0 * t);
             (w > 0.0).then_some((b, w))
         })
