@@ -114,10 +114,11 @@ pub(crate) fn export(
         Ok(opened) => opened,
         // A whole head: its front face rigged, the rig carried to every part.
         Err(e @ facebem::input::OpenError::Face { .. }) => {
-            return match facebem::input::heads::WholeFile::read(rig) {
-                Some(whole) => {
+            return match facebem::input::heads::WholeFile::examine(rig) {
+                Some(Ok(whole)) => {
                     crate::head::export_head(rig, gltf, whole, gltf_params, &params, solver, force)
                 }
+                Some(Err(refusal)) => Err(anyhow::anyhow!("{refusal}")),
                 None => Err(e.into()),
             };
         }

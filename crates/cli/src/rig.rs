@@ -297,8 +297,10 @@ pub(crate) fn whole_file_parts(
     if !matches!(&e, facebem::input::OpenError::Face { .. }) {
         return e.into();
     }
-    let Some(whole) = facebem::input::heads::WholeFile::read(file) else {
-        return e.into();
+    let whole = match facebem::input::heads::WholeFile::examine(file) {
+        None => return e.into(),
+        Some(Err(refusal)) => return anyhow::anyhow!("{refusal}"),
+        Some(Ok(whole)) => whole,
     };
     let refusal = whole.refusal(file);
     if describe {

@@ -115,7 +115,17 @@ pub enum PartsError {
         "two skins of about the same size ({0} and {1} triangles): two heads or two faces in one file"
     )]
     TwoSkins(usize, usize),
+    /// A part other than the skin has more triangles than [`MAX_PART_TRIANGLES`].
+    #[error(
+        "a part of {0} triangles beside the skin, over the {MAX_PART_TRIANGLES} a head's part may have (simplify it or leave it out)"
+    )]
+    PartTooLarge(usize),
 }
+
+/// The most triangles a part other than the skin may have (eyeballs, teeth, lashes, hair
+/// cards, clothes): a head's parts each have a few thousand; a part of more would cost more to
+/// carry the rig to than the head itself is worth.
+pub const MAX_PART_TRIANGLES: usize = 250_000;
 
 /// Finds the parts of `scene` (see the module documentation).
 pub fn find_parts(scene: &Scene) -> Result<HeadParts, PartsError> {
@@ -131,6 +141,13 @@ pub fn find_parts(scene: &Scene) -> Result<HeadParts, PartsError> {
         .max_by(|&a, &b| stats[a].area.total_cmp(&stats[b].area))
         .unwrap_or(0);
     let skin_size = stats[skin].extent;
+    if let Some(c) = (0..components.len())
+        .filter(|&i| i != skin)
+        .map(|i| components[i].triangles.len())
+        .find(|&t| t > MAX_PART_TRIANGLES)
+    {
+        return Err(PartsError::PartTooLarge(c));
+    }
     for (i, s) in stats.iter().enumerate() {
         let similar = s.area > 0.6 * stats[skin].area && s.extent > 0.6 * skin_size;
         if i != skin && similar && !s.closed_sphere(skin_size) {

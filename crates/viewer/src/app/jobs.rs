@@ -213,8 +213,9 @@ pub(crate) struct OpenedFile {
 pub(crate) fn open_file(path: &Path) -> Result<OpenedFile, String> {
     let opened = facebem::input::open(path).map_err(|e| {
         // A head or an avatar: say what it holds and why it is not rigged.
-        match (&e, facebem::input::heads::WholeFile::read(path)) {
-            (facebem::input::OpenError::Face { .. }, Some(whole)) => whole.refusal(path),
+        match (&e, facebem::input::heads::WholeFile::examine(path)) {
+            (facebem::input::OpenError::Face { .. }, Some(Ok(whole))) => whole.refusal(path),
+            (facebem::input::OpenError::Face { .. }, Some(Err(refusal))) => refusal,
             _ => e.to_string(),
         }
     })?;
