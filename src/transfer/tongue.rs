@@ -22,9 +22,10 @@ use glam::DVec3;
 /// The share of `jawOpen` in `tongueOut`: the mouth open far enough for the tongue to pass
 /// between the incisors.
 pub const TONGUE_OUT_JAW: f64 = 0.5;
-/// How far the tip of the tongue moves forward, in interocular distances (0.55 ≈ 35 mm: from
-/// behind the lower incisors to about 25 mm in front of them), before the jaw takes it back.
-pub const TONGUE_OUT_FORWARD: f64 = 0.55;
+/// How far the tip of the tongue moves forward, in interocular distances (0.7 ≈ 44 mm: from
+/// behind the lower incisors to about 20 mm in front of the lips, as in ARKit's reference
+/// picture of tongueOut), before the opening jaw takes it back and down.
+pub const TONGUE_OUT_FORWARD: f64 = 0.7;
 /// The length of the tongue behind its tip that moves, in interocular distances.
 pub const TONGUE_LENGTH: f64 = 0.5;
 /// Distances from the nearest tooth (in interocular distances) over which a vertex goes from
@@ -84,7 +85,7 @@ pub struct Mouth<'a> {
 ///     iod: 1.0,
 /// };
 /// let field = protrusion(&mouth, &[DVec3::ZERO; 3]).unwrap();
-/// assert!((field[2].z - 0.55).abs() < 1e-9);
+/// assert!((field[2].z - 0.7).abs() < 1e-9);
 /// assert_eq!(field[0], DVec3::ZERO);
 /// ```
 pub fn protrusion(mouth: &Mouth, jaw: &[DVec3]) -> Option<Vec<DVec3>> {
