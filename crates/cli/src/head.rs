@@ -49,6 +49,7 @@ pub(crate) fn export_head(
         format: facebem::export::GltfFormat::from_path(gltf),
         materials: Some(materials),
         named_fields: head.named_fields,
+        mesh_split: Some(mesh_per_part(&whole)),
         ..model.gltf_params(&gltf_params)
     };
     let (bytes, summary) = facebem::export::build_gltf(&basis, &layout, &params)?;
@@ -145,4 +146,43 @@ fn rig_head(
         &model.basis,
     );
     Ok((model, head))
+}
+
+/// One mesh per part of the head (skin, each eyeball, each row of teeth, gums and tongue, lid
+/// parts, other), by the scene's triangles (an OBJ's export layout has the same triangles in
+/// the same order).
+fn mesh_per_part(whole: &WholeFile) -> facebem::export::gltf::MeshSplit {
+    use face_prep::parts::{PartKind, Side};
+    const NAMES: [&str; 8] = [
+        "skin",
+        "eyeball_left",
+        "eyeball_right",
+        "upper_teeth",
+        "lower_teeth",
+        "gums_and_tongue",
+        "lid_parts",
+        "other",
+    ];
+    let mut triangle_mesh = vec![7u32; whole.scene.triangles.len()];
+    for (c, kind) in whole.parts.components.iter().zip(&whole.parts.kinds) {
+        let mesh = match kind {
+            PartKind::Skin => 0,
+            PartKind::Eyeball(Side::Left) => 1,
+            PartKind::Eyeball(Side::Right) => 2,
+            PartKind::UpperTooth => 3,
+            PartKind::LowerTooth => 4,
+            PartKind::GumsAndTongue => 5,
+            PartKind::LidPart => 6,
+            _ => 7,
+        };
+        for &t in &c.triangles {
+            if let Some(slot) = triangle_mesh.get_mut(t as usize) {
+                *slot = mesh;
+            }
+        }
+    }
+    facebem::export::gltf::MeshSplit {
+        names: NAMES.iter().map(|n| n.to_string()).collect(),
+        triangle_mesh,
+    }
 }

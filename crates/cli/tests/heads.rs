@@ -103,6 +103,57 @@ fn a_head_exports_with_the_targets_on_every_part() {
         String::from_utf8_lossy(&run.stderr)
     );
     support::assert_valid(&glb);
+    // One mesh per part, each with its OBJ materials and every target.
+    let (json, _) = {
+        let bytes = std::fs::read(&glb).unwrap();
+        let (j, b) = face_prep::gltf_read::split_glb(&bytes).unwrap();
+        (
+            serde_json::from_slice::<serde_json::Value>(j).unwrap(),
+            b.map(<[u8]>::len),
+        )
+    };
+    let meshes: Vec<(String, Vec<String>)> = json["meshes"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|m| {
+            let materials = m["primitives"].as_array().unwrap().iter().map(|p| {
+                json["materials"][p["material"].as_u64().unwrap() as usize]["name"]
+                    .as_str()
+                    .unwrap()
+                    .to_string()
+            });
+            (m["name"].as_str().unwrap().to_string(), materials.collect())
+        })
+        .collect();
+    let expected = [
+        ("skin", vec!["M_Face", "M_BackHead"]),
+        ("eyeball_left", vec!["M_ScleraLeft", "M_IrisLeft"]),
+        ("eyeball_right", vec!["M_ScleraRight", "M_IrisRight"]),
+        ("upper_teeth", vec!["M_Teeth"]),
+        ("lower_teeth", vec!["M_Teeth"]),
+        ("gums_and_tongue", vec!["M_GumsTongue"]),
+        (
+            "lid_parts",
+            vec![
+                "M_LacrimalFluid",
+                "M_EyeBlend",
+                "M_EyeOcclusion",
+                "M_EyeLashes",
+            ],
+        ),
+    ];
+    assert_eq!(meshes.len(), expected.len(), "{meshes:?}");
+    for ((name, materials), (want, want_materials)) in meshes.iter().zip(&expected) {
+        assert_eq!(name, want);
+        assert_eq!(materials, want_materials, "{name}");
+    }
+    for m in json["meshes"].as_array().unwrap() {
+        assert_eq!(
+            m["extras"]["targetNames"],
+            json["meshes"][0]["extras"]["targetNames"]
+        );
+    }
     let targets = gltf_targets::read(&glb);
     let v = support::obj_v_lines(&head());
     assert_eq!(v.len(), 26_719);

@@ -31,6 +31,7 @@
 //! facebem's own names are not exported).
 
 mod buffer;
+mod checks;
 mod meshopt;
 mod primitives;
 mod summary;
@@ -47,6 +48,7 @@ use crate::MuscleBasis;
 use crate::expressions::NameSets;
 use crate::expressions::presets::Preset;
 use buffer::{Builder, base64, glb};
+use checks::{check, check_fields};
 use targets::{MorphTargets, morph_targets, target_accessors};
 
 /// Name of the material of the exported face: replace it to texture the face.
@@ -156,6 +158,19 @@ pub struct GltfParams {
     /// every basis vertex at weight 1). Written in the standard's order when the name's set is
     /// exported; any other name, or a field of the wrong length, is an error.
     pub named_fields: Vec<(String, Vec<glam::DVec3>)>,
+    /// One mesh (and node) per group of triangles instead of one mesh: a head's parts. All
+    /// meshes share the vertices and carry every target.
+    pub mesh_split: Option<MeshSplit>,
+}
+
+/// Triangles grouped into meshes ([`GltfParams::mesh_split`]).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct MeshSplit {
+    /// The meshes' names.
+    pub names: Vec<String>,
+    /// Per triangle of the export layout, its mesh (an index into `names`); ignored (one mesh)
+    /// when its length is not the layout's triangle count.
+    pub triangle_mesh: Vec<u32>,
 }
 
 impl Default for GltfParams {
@@ -173,6 +188,7 @@ impl Default for GltfParams {
             compress: false,
             materials: None,
             named_fields: Vec::new(),
+            mesh_split: None,
         }
     }
 }
@@ -340,20 +356,20 @@ pub fn export_gltf_layout(
     if !looks.warnings.is_empty() {
         extras["materialWarnings"] = json!(looks.warnings);
     }
-    let mut root = root_json(asset_json(params), looks, extras);
+    let names = params.mesh_split.as_ref().map(|s| s.names.clone());
+    let mut root = root_json(asset_json(params), looks, extras, names);
     // glTF requires at least one target when `targets` is present.
     if !targets.is_empty() {
-        for primitive in root["meshes"][0]["primitives"]
-            .as_array_mut()
-            .into_iter()
-            .flatten()
-        {
-            primitive["targets"] = Value::Array(target_json.clone());
+        for mesh in root["meshes"].as_array_mut().into_iter().flatten() {
+            for primitive in mesh["primitives"].as_array_mut().into_iter().flatten() {
+                primitive["targets"] = Value::Array(target_json.clone());
+            }
+            mesh["weights"] = json!(vec![0.0; targets.len()]);
         }
-        root["meshes"][0]["weights"] = json!(vec![0.0; targets.len()]);
     }
     if params.animation && !clip_targets.is_empty() {
-        root["animations"] = animations(&mut b, params, &clip_targets, targets.len())?;
+        let nodes = root["nodes"].as_array().map_or(1, Vec::len);
+        root["animations"] = animations(&mut b, params, &clip_targets, targets.len(), nodes)?;
     }
     finish(b, root, params.format)
 }
@@ -443,18 +459,36 @@ fn asset_json(params: &GltfParams) -> Value {
 /// The node and the mesh are named `face`, the scene `facebem`: three.js names its objects after
 /// them and makes a repeated name unique (`face_1`), so with the scene also named `face`,
 /// `getObjectByName('face')` found the scene instead of the mesh (issue 34).
-fn root_json(asset: Value, looks: primitives::Looks, extras: Value) -> Value {
+fn root_json(
+    asset: Value,
+    looks: primitives::Looks,
+    extras: Value,
+    names: Option<Vec<String>>,
+) -> Value {
+    // One mesh and node per group that has primitives (one, `face`, without a split).
+    let names = names.unwrap_or_else(|| vec!["face".to_string()]);
+    let (mut meshes, mut nodes) = (Vec::new(), Vec::new());
+    for (group, name) in names.iter().enumerate() {
+        let primitives: Vec<Value> = looks
+            .primitives
+            .iter()
+            .filter(|(m, _)| *m == group)
+            .map(|(_, p)| p.clone())
+            .collect();
+        if primitives.is_empty() {
+            continue;
+        }
+        nodes.push(json!({ "name": name, "mesh": meshes.len() }));
+        meshes.push(json!({ "name": name, "primitives": primitives, "extras": extras }));
+    }
+    let scene_nodes: Vec<usize> = (0..nodes.len()).collect();
     let mut root = json!({
         "asset": asset,
         "scene": 0,
-        "scenes": [{ "name": "facebem", "nodes": [0] }],
-        "nodes": [{ "name": "face", "mesh": 0 }],
+        "scenes": [{ "name": "facebem", "nodes": scene_nodes }],
+        "nodes": nodes,
         "materials": looks.materials,
-        "meshes": [{
-            "name": "face",
-            "primitives": looks.primitives,
-            "extras": extras,
-        }],
+        "meshes": meshes,
     });
     if !looks.images.is_empty() {
         root["images"] = json!(looks.images);
@@ -470,6 +504,7 @@ fn animations(
     params: &GltfParams,
     clip_targets: &[(String, usize)],
     target_count: usize,
+    nodes: usize,
 ) -> Result<Value, GltfExportError> {
     let s = params.seconds_per_keyframe;
     let input = b.scalar_accessor("animation times", &[0.0, s, 2.0 * s], true)?;
@@ -482,7 +517,7 @@ fn animations(
         clips.push(json!({
             "name": name,
             "samplers": [{ "input": input, "output": output, "interpolation": "LINEAR" }],
-            "channels": [{ "sampler": 0, "target": { "node": 0, "path": "weights" } }],
+            "channels": (0..nodes).map(|node| json!({ "sampler": 0, "target": { "node": node, "path": "weights" } })).collect::<Vec<_>>(),
         }));
     }
     Ok(Value::Array(clips))
@@ -528,97 +563,6 @@ fn finish(b: Builder, mut root: Value, format: GltfFormat) -> Result<Vec<u8>, Gl
         GltfFormat::Binary => glb(&root, &bin),
         GltfFormat::Embedded => serde_json::to_vec_pretty(&root).unwrap_or_default(),
     })
-}
-
-/// Checks the basis, the layout and the parameters before anything is built.
-fn check(
-    basis: &MuscleBasis,
-    layout: &ExportLayout,
-    params: &GltfParams,
-) -> Result<(), GltfExportError> {
-    let n = basis.neutral.len();
-    if n == 0 || basis.triangles.is_empty() {
-        return Err(GltfExportError::EmptyMesh {
-            vertices: n,
-            triangles: basis.triangles.len(),
-        });
-    }
-    let s = params.seconds_per_keyframe;
-    // The clips' last keyframe is at 2 s.
-    if !((2.0 * s).is_finite() && s > 0.0) {
-        return Err(GltfExportError::BadKeyframeTime(
-            params.seconds_per_keyframe,
-        ));
-    }
-    if !(params.metres_per_unit.is_finite() && params.metres_per_unit > 0.0) {
-        return Err(GltfExportError::BadUnit(params.metres_per_unit));
-    }
-    check_fields(basis, params)?;
-    for (t, tri) in basis.triangles.iter().enumerate() {
-        if let Some(&v) = tri.iter().find(|&&v| v as usize >= n) {
-            return Err(GltfExportError::IndexOutOfRange {
-                triangle: t,
-                vertex: v,
-                count: n,
-            });
-        }
-    }
-    check_layout(layout, n)
-}
-
-/// The controls' and the named fields' lengths and names.
-fn check_fields(basis: &MuscleBasis, params: &GltfParams) -> Result<(), GltfExportError> {
-    let n = basis.neutral.len();
-    for (name, field) in &params.named_fields {
-        if crate::expressions::not_modelled(name).is_none_or(|(n, _)| n != name) {
-            return Err(GltfExportError::NotANamedField(name.clone()));
-        }
-        if field.len() != n {
-            return Err(GltfExportError::NamedFieldLength {
-                name: name.clone(),
-                len: field.len(),
-                vertices: n,
-            });
-        }
-    }
-    for (id, field) in basis.muscle_ids.iter().zip(&basis.displacements) {
-        if field.len() != n {
-            return Err(GltfExportError::FieldLength {
-                muscle: id.clone(),
-                expected: n,
-                got: field.len(),
-            });
-        }
-    }
-    Ok(())
-}
-
-/// The layout fits a basis of `n` vertices.
-fn check_layout(layout: &ExportLayout, n: usize) -> Result<(), GltfExportError> {
-    let m = layout.len();
-    let lengths_fit = layout.positions.len() == m
-        && layout.input_index.len() == m
-        && layout.uvs.as_ref().is_none_or(|u| u.len() == m)
-        && layout.normals.as_ref().is_none_or(|u| u.len() == m);
-    if !lengths_fit || layout.triangles.is_empty() {
-        return Err(GltfExportError::Layout(
-            "per-vertex lists of different lengths, or no triangles".into(),
-        ));
-    }
-    if let Some(w) = layout.welded.iter().flatten().find(|&&w| w as usize >= n) {
-        return Err(GltfExportError::Layout(format!(
-            "vertex {w} of {n} does not exist"
-        )));
-    }
-    if let Some(t) = layout.triangles.iter().position(|t| {
-        t.iter()
-            .any(|&i| layout.welded.get(i as usize).is_none_or(Option::is_none))
-    }) {
-        return Err(GltfExportError::Layout(format!(
-            "triangle {t} uses a vertex outside the mesh"
-        )));
-    }
-    Ok(())
 }
 
 /// Area-weighted unit vertex normals (`+z` for a vertex without area).

@@ -1,6 +1,7 @@
 //! The mesh's primitives and materials: one primitive with the replaceable skin
 //! ([`super::MATERIAL_NAME`]), or, for an OBJ with materials ([`crate::export::material`]), one
-//! primitive per material, all sharing the vertices and the morph targets.
+//! primitive per material, all sharing the vertices and the morph targets; with a
+//! [`super::MeshSplit`] (a head's parts), one mesh per group, each with its materials' primitives.
 
 use serde_json::{Value, json};
 
@@ -12,7 +13,8 @@ use crate::export::material::UserMaterial;
 /// The primitives (without their `targets`), and the document's materials, textures, images
 /// and samplers; warnings for what could not be used.
 pub(super) struct Looks {
-    pub(super) primitives: Vec<Value>,
+    /// (mesh, primitive): the mesh is the triangles' [`super::MeshSplit`] group (0 without).
+    pub(super) primitives: Vec<(usize, Value)>,
     pub(super) materials: Vec<Value>,
     pub(super) textures: Vec<Value>,
     pub(super) images: Vec<Value>,
@@ -52,32 +54,64 @@ pub(super) fn looks(
         }
         None => None,
     };
+    let mesh_of = |t: usize| {
+        params
+            .mesh_split
+            .as_ref()
+            .filter(|s| s.triangle_mesh.len() == layout.triangles.len())
+            .map_or(0, |s| s.triangle_mesh[t] as usize)
+    };
+    let meshes = params
+        .mesh_split
+        .as_ref()
+        .filter(|s| s.triangle_mesh.len() == layout.triangles.len())
+        .map_or(1, |s| s.names.len().max(1));
     let Some((per_triangle, user)) = per_triangle.zip(user) else {
-        let indices = b.indices_accessor(&layout.triangles);
         looks.materials.push(skin());
-        looks.primitives.push(primitive(attributes, indices, 0));
+        for mesh in 0..meshes {
+            let triangles: Vec<[u32; 3]> = (0..layout.triangles.len())
+                .filter(|&t| mesh_of(t) == mesh)
+                .map(|t| layout.triangles[t])
+                .collect();
+            if !triangles.is_empty() {
+                let indices = b.indices_accessor(&triangles);
+                looks
+                    .primitives
+                    .push((mesh, primitive(attributes, indices, 0)));
+            }
+        }
         return looks;
     };
-    // Material slots in order: the user's, then the skin for triangles without one.
+    // Material slots in order: the user's, then the skin for triangles without one; within
+    // each mesh of the split.
     let skin_slot = user.materials.len();
-    let mut groups: Vec<Vec<[u32; 3]>> = vec![vec![]; skin_slot + 1];
-    for (t, m) in layout.triangles.iter().zip(per_triangle) {
-        groups[m.map_or(skin_slot, |m| m as usize)].push(*t);
+    let mut groups: Vec<Vec<Vec<[u32; 3]>>> = vec![vec![vec![]; skin_slot + 1]; meshes];
+    for (t, (tri, m)) in layout.triangles.iter().zip(per_triangle).enumerate() {
+        groups[mesh_of(t).min(meshes - 1)][m.map_or(skin_slot, |m| m as usize)].push(*tri);
     }
-    for (slot, triangles) in groups.iter().enumerate() {
-        if triangles.is_empty() {
-            continue;
+    let mut material_of_slot: Vec<Option<usize>> = vec![None; skin_slot + 1];
+    for (mesh, slots) in groups.iter().enumerate() {
+        for (slot, triangles) in slots.iter().enumerate() {
+            if triangles.is_empty() {
+                continue;
+            }
+            let material = match material_of_slot[slot] {
+                Some(m) => m,
+                None => {
+                    let json = match user.materials.get(slot) {
+                        Some(m) => user_material(b, m, layout.uvs.is_some(), &mut looks),
+                        None => skin(),
+                    };
+                    looks.materials.push(json);
+                    material_of_slot[slot] = Some(looks.materials.len() - 1);
+                    looks.materials.len() - 1
+                }
+            };
+            let indices = b.indices_accessor(triangles);
+            looks
+                .primitives
+                .push((mesh, primitive(attributes, indices, material)));
         }
-        let material = looks.materials.len();
-        let json = match user.materials.get(slot) {
-            Some(m) => user_material(b, m, layout.uvs.is_some(), &mut looks),
-            None => skin(),
-        };
-        looks.materials.push(json);
-        let indices = b.indices_accessor(triangles);
-        looks
-            .primitives
-            .push(primitive(attributes, indices, material));
     }
     looks
 }

@@ -127,6 +127,18 @@ pub enum PartsError {
 /// carry the rig to than the head itself is worth.
 pub const MAX_PART_TRIANGLES: usize = 250_000;
 
+/// Refuses a part other than the skin with more than [`MAX_PART_TRIANGLES`] triangles.
+fn check_part_sizes(components: &[Component], skin: usize) -> Result<(), PartsError> {
+    match (0..components.len())
+        .filter(|&i| i != skin)
+        .map(|i| components[i].triangles.len())
+        .find(|&t| t > MAX_PART_TRIANGLES)
+    {
+        Some(t) => Err(PartsError::PartTooLarge(t)),
+        None => Ok(()),
+    }
+}
+
 /// Finds the parts of `scene` (see the module documentation).
 pub fn find_parts(scene: &Scene) -> Result<HeadParts, PartsError> {
     let components = scene.components();
@@ -141,13 +153,7 @@ pub fn find_parts(scene: &Scene) -> Result<HeadParts, PartsError> {
         .max_by(|&a, &b| stats[a].area.total_cmp(&stats[b].area))
         .unwrap_or(0);
     let skin_size = stats[skin].extent;
-    if let Some(c) = (0..components.len())
-        .filter(|&i| i != skin)
-        .map(|i| components[i].triangles.len())
-        .find(|&t| t > MAX_PART_TRIANGLES)
-    {
-        return Err(PartsError::PartTooLarge(c));
-    }
+    check_part_sizes(&components, skin)?;
     for (i, s) in stats.iter().enumerate() {
         let similar = s.area > 0.6 * stats[skin].area && s.extent > 0.6 * skin_size;
         if i != skin && similar && !s.closed_sphere(skin_size) {
