@@ -116,49 +116,46 @@ pub fn add_targets(
         if !inverse.is_finite() {
             continue;
         }
-        // Per POSITION accessor: per target, the local deltas (the largest of the copies).
-        let mut by_accessor: Vec<(u32, u32, Vec<Vec<DVec3>>)> = Vec::new();
+        // The mesh's distinct POSITION accessors, each with the primitives that use it.
+        let mut by_accessor: Vec<(u32, u32, Vec<std::ops::Range<usize>>)> = Vec::new();
         for p in &placement.primitives {
             let range = p.first as usize..(p.first + p.count) as usize;
             if range.end > n {
                 return Err(UserGltfError::Mismatch(format!("mesh {mesh}'s vertices")));
             }
-            let slot = match by_accessor.iter().position(|a| a.0 == p.position_accessor) {
-                Some(s) => s,
-                None => {
-                    by_accessor.push((
-                        p.position_accessor,
-                        p.count,
-                        vec![vec![DVec3::ZERO; p.count as usize]; targets.len()],
-                    ));
-                    by_accessor.len() - 1
-                }
-            };
-            for (t, (_, field)) in targets.iter().enumerate() {
-                for (out, d) in by_accessor[slot].2[t].iter_mut().zip(&field[range.clone()]) {
-                    let local = inverse * *d;
-                    if local.length_squared() > out.length_squared() {
-                        *out = local;
-                    }
-                }
+            match by_accessor.iter_mut().find(|a| a.0 == p.position_accessor) {
+                Some(a) => a.2.push(range),
+                None => by_accessor.push((p.position_accessor, p.count, vec![range])),
             }
         }
-        let moves = by_accessor
-            .iter()
-            .any(|a| a.2.iter().flatten().any(|d| *d != DVec3::ZERO));
+        let moves = targets.iter().any(|(_, field)| {
+            by_accessor
+                .iter()
+                .flat_map(|a| a.2.iter())
+                .any(|r| field[r.clone()].iter().any(|d| *d != DVec3::ZERO))
+        });
         if !moves {
             continue;
         }
-        let accessors: Vec<(u32, Vec<Value>)> = by_accessor
-            .into_iter()
-            .map(|(acc, count, fields)| {
-                let ids = fields
-                    .iter()
-                    .map(|f| delta_accessor(&mut root, &mut bin, count, f))
-                    .collect::<Result<Vec<Value>, _>>()?;
-                Ok((acc, ids))
-            })
-            .collect::<Result<_, UserGltfError>>()?;
+        // One target and one accessor at a time (memory: one accessor's deltas): the local
+        // deltas, the largest of the primitives' copies of each vertex.
+        let mut accessors: Vec<(u32, Vec<Value>)> =
+            by_accessor.iter().map(|a| (a.0, Vec::new())).collect();
+        for (_, field) in targets {
+            for (slot, (_, count, ranges)) in by_accessor.iter().enumerate() {
+                let mut local = vec![DVec3::ZERO; *count as usize];
+                for r in ranges {
+                    for (out, d) in local.iter_mut().zip(&field[r.clone()]) {
+                        let l = inverse * *d;
+                        if l.length_squared() > out.length_squared() {
+                            *out = l;
+                        }
+                    }
+                }
+                let id = delta_accessor(&mut root, &mut bin, *count, &local)?;
+                accessors[slot].1.push(id);
+            }
+        }
         let base = append_to_mesh(&mut root, mesh, targets, &accessors)?;
         first_target.push((mesh, base));
         added.meshes.push(mesh);

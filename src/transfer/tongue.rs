@@ -50,7 +50,7 @@ pub struct Mouth<'a> {
     pub triangles: &'a [[u32; 3]],
     /// The vertices of the gums and tongue.
     pub gums_and_tongue: &'a [u32],
-    /// The vertices of the upper and of the lower teeth.
+    /// The vertices of the upper teeth.
     pub upper_teeth: &'a [u32],
     /// The vertices of the lower teeth.
     pub lower_teeth: &'a [u32],
