@@ -25,6 +25,7 @@ use face_prep::parts::{FrontFace, HeadParts, PartKind, Scene};
 use face_prep::{FaceMesh, FaceRig, Generator, MuscleKind};
 use glam::DVec3;
 
+use super::nearest::PointTree;
 use super::{gaze, tongue};
 use crate::model::MuscleBasis;
 
@@ -91,6 +92,8 @@ pub fn carry_to_head(
             )
         })
         .collect();
+    let border_tree = tree_of(&border, |b| mesh.vertices[b as usize]);
+    let mouth_tree = tree_of(&mouth_parts, |m| scene.positions[m as usize]);
     // Each skin vertex outside the face: its border vertex and weight.
     let skin_source: Vec<Option<(u32, f64)>> = (0..n)
         .map(|v| {
@@ -101,8 +104,9 @@ pub fn carry_to_head(
                 return Some((m, 1.0));
             }
             let p = scene.positions[v];
-            let (b, d) = nearest(&border, |b| mesh.vertices[b as usize], p)?;
-            let lining = nearest(&mouth_parts, |m| scene.positions[m as usize], p)
+            let (b, d) = border_tree.nearest(p)?;
+            let lining = mouth_tree
+                .nearest(p)
                 .is_some_and(|(_, to_teeth)| to_teeth < LINING_NEAR * iod);
             let reach = if lining {
                 LINING_FALLOFF * iod
@@ -117,6 +121,7 @@ pub fn carry_to_head(
     let skin: Vec<u32> = (0..n as u32)
         .filter(|&v| kind_of[v as usize] == Some(PartKind::Skin))
         .collect();
+    let skin_tree = tree_of(&skin, |s| scene.positions[s as usize]);
     let rows = Rows::new(scene, &kind_of);
     // What every other vertex follows, found once for all controls.
     let follow: Vec<Follow> = (0..n)
@@ -125,10 +130,9 @@ pub fn carry_to_head(
             match kind_of[v] {
                 Some(PartKind::LowerTooth) => Follow::Jaw(1.0),
                 Some(PartKind::GumsAndTongue) => Follow::Jaw(rows.lower_share(p)),
-                Some(PartKind::LidPart | PartKind::Other) => {
-                    nearest(&skin, |s| scene.positions[s as usize], p)
-                        .map_or(Follow::Still, |(s, _)| Follow::Skin(s))
-                }
+                Some(PartKind::LidPart | PartKind::Other) => skin_tree
+                    .nearest(p)
+                    .map_or(Follow::Still, |(s, _)| Follow::Skin(s)),
                 _ => Follow::Still,
             }
         })
@@ -273,13 +277,9 @@ fn vertex_kinds(parts: &HeadParts, n: usize) -> Vec<Option<PartKind>> {
     kinds
 }
 
-/// The candidate nearest to `p` (positions by `at`) and its distance.
-fn nearest(candidates: &[u32], at: impl Fn(u32) -> DVec3, p: DVec3) -> Option<(u32, f64)> {
-    candidates
-        .iter()
-        .map(|&c| (c, at(c).distance_squared(p)))
-        .min_by(|a, b| a.1.total_cmp(&b.1))
-        .map(|(c, d2)| (c, d2.sqrt()))
+/// A tree of the `candidates` (positions by `at`) for nearest-point queries.
+fn tree_of(candidates: &[u32], at: impl Fn(u32) -> DVec3) -> PointTree {
+    PointTree::new(candidates.iter().map(|&c| (c, at(c))))
 }
 
 /// What a vertex that is not simulated skin follows.
@@ -295,17 +295,18 @@ enum Follow {
 
 /// The two rows of teeth, for the gums' and tongue's share of the jaw's motion.
 struct Rows {
-    upper: Vec<DVec3>,
-    lower: Vec<DVec3>,
+    upper: PointTree,
+    lower: PointTree,
 }
 
 impl Rows {
     fn new(scene: &Scene, kind_of: &[Option<PartKind>]) -> Rows {
-        let of = |k: PartKind| -> Vec<DVec3> {
-            (0..kind_of.len())
-                .filter(|&v| kind_of[v] == Some(k))
-                .map(|v| scene.positions[v])
-                .collect()
+        let of = |k: PartKind| -> PointTree {
+            PointTree::new(
+                (0..kind_of.len())
+                    .filter(|&v| kind_of[v] == Some(k))
+                    .map(|v| (v as u32, scene.positions[v])),
+            )
         };
         Rows {
             upper: of(PartKind::UpperTooth),
@@ -324,12 +325,7 @@ impl Rows {
 
     /// Distance to the upper row over the sum of the distances to both rows.
     fn linear_share(&self, p: DVec3) -> f64 {
-        let d = |row: &[DVec3]| {
-            row.iter()
-                .map(|q| q.distance_squared(p))
-                .fold(f64::INFINITY, f64::min)
-                .sqrt()
-        };
+        let d = |row: &PointTree| row.nearest(p).map_or(f64::INFINITY, |(_, d)| d);
         let (up, low) = (d(&self.upper), d(&self.lower));
         match (up.is_finite(), low.is_finite()) {
             (true, true) if up + low > 0.0 => up / (up + low),

@@ -9,6 +9,7 @@
 mod carry;
 pub mod gaze;
 pub mod head;
+pub mod nearest;
 pub mod tongue;
 
 use glam::DVec3;

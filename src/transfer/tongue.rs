@@ -19,6 +19,8 @@
 
 use glam::DVec3;
 
+use super::nearest::PointTree;
+
 /// The share of `jawOpen` in `tongueOut`: the mouth open far enough for the tongue to pass
 /// between the incisors.
 pub const TONGUE_OUT_JAW: f64 = 0.5;
@@ -90,12 +92,9 @@ pub struct Mouth<'a> {
 /// ```
 pub fn protrusion(mouth: &Mouth, jaw: &[DVec3]) -> Option<Vec<DVec3>> {
     let at = |v: u32| mouth.positions[v as usize];
-    let nearest = |row: &[u32], p: DVec3| {
-        row.iter()
-            .map(|&t| at(t).distance_squared(p))
-            .fold(f64::INFINITY, f64::min)
-            .sqrt()
-    };
+    let tree = |row: &[u32]| PointTree::new(row.iter().map(|&v| (v, at(v))));
+    let (upper_tree, lower_tree) = (tree(mouth.upper_teeth), tree(mouth.lower_teeth));
+    let nearest = |row: &PointTree, p: DVec3| row.nearest(p).map_or(f64::INFINITY, |(_, d)| d);
     let height = |v: u32| mouth.up.dot(at(v));
     let iod = mouth.iod;
     let lowest_upper = incisal_edge(mouth, mouth.upper_teeth, -1.0)?;
@@ -111,7 +110,7 @@ pub fn protrusion(mouth: &Mouth, jaw: &[DVec3]) -> Option<Vec<DVec3>> {
         .iter()
         .map(|&v| {
             let p = at(v);
-            let (up, low) = (nearest(mouth.upper_teeth, p), nearest(mouth.lower_teeth, p));
+            let (up, low) = (nearest(&upper_tree, p), nearest(&lower_tree, p));
             let teeth = up.min(low);
             let away = smooth((teeth / iod - GUM_BAND.0) / (GUM_BAND.1 - GUM_BAND.0));
             let share = if up + low > 0.0 { up / (up + low) } else { 0.0 };
@@ -126,7 +125,7 @@ pub fn protrusion(mouth: &Mouth, jaw: &[DVec3]) -> Option<Vec<DVec3>> {
         .into_iter()
         .map(|(v, w)| {
             let p = at(v);
-            let teeth = nearest(mouth.upper_teeth, p).min(nearest(mouth.lower_teeth, p));
+            let teeth = nearest(&upper_tree, p).min(nearest(&lower_tree, p));
             (
                 v,
                 w * smooth((teeth / iod - GUM_BAND.0) / (GUM_BAND.1 - GUM_BAND.0)),
