@@ -105,14 +105,25 @@ pub fn protrusion(mouth: &Mouth, jaw: &[DVec3]) -> Option<Vec<DVec3>> {
         let t = t.clamp(0.0, 1.0);
         t * t * (3.0 - 2.0 * t)
     };
+    // Per vertex: how far from the teeth it is (1: tongue, 0: gum at a tooth).
+    let away_of: std::collections::HashMap<u32, f64> = mouth
+        .gums_and_tongue
+        .iter()
+        .map(|&v| {
+            let teeth = nearest(&upper_tree, at(v)).min(nearest(&lower_tree, at(v)));
+            (
+                v,
+                smooth((teeth / iod - GUM_BAND.0) / (GUM_BAND.1 - GUM_BAND.0)),
+            )
+        })
+        .collect();
     let weights: Vec<(u32, f64)> = mouth
         .gums_and_tongue
         .iter()
         .map(|&v| {
             let p = at(v);
             let (up, low) = (nearest(&upper_tree, p), nearest(&lower_tree, p));
-            let teeth = up.min(low);
-            let away = smooth((teeth / iod - GUM_BAND.0) / (GUM_BAND.1 - GUM_BAND.0));
+            let away = away_of.get(&v).copied().unwrap_or(0.0);
             let share = if up + low > 0.0 { up / (up + low) } else { 0.0 };
             let lower = smooth((share - 0.3) / 0.1);
             let depth = (bite - height(v)) / iod;
@@ -123,14 +134,7 @@ pub fn protrusion(mouth: &Mouth, jaw: &[DVec3]) -> Option<Vec<DVec3>> {
     // Smoothed over the surface, then kept off the teeth again: a vertex at a tooth is gum.
     let weights: Vec<(u32, f64)> = smoothed(mouth, weights)
         .into_iter()
-        .map(|(v, w)| {
-            let p = at(v);
-            let teeth = nearest(&upper_tree, p).min(nearest(&lower_tree, p));
-            (
-                v,
-                w * smooth((teeth / iod - GUM_BAND.0) / (GUM_BAND.1 - GUM_BAND.0)),
-            )
-        })
+        .map(|(v, w)| (v, w * away_of.get(&v).copied().unwrap_or(0.0)))
         .filter(|&(_, w)| w > 0.0)
         .collect();
     let tongue: Vec<u32> = weights

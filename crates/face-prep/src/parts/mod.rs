@@ -145,9 +145,13 @@ pub fn find_parts(scene: &Scene) -> Result<HeadParts, PartsError> {
     if components.is_empty() {
         return Err(PartsError::Empty);
     }
+    // Closedness is the surface's, not its texture layout's: vertices at exactly the same
+    // coordinates (a UV seam's copies, in a glTF) are one. Regression: the ICT head as a GLB
+    // (seams split) had no closed eyeball.
+    let first = scene.first_at_same_place();
     let stats: Vec<ComponentStats> = components
         .iter()
-        .map(|c| ComponentStats::new(scene, c))
+        .map(|c| ComponentStats::new(scene, c, &first))
         .collect();
     let skin = (0..stats.len())
         .max_by(|&a, &b| stats[a].area.total_cmp(&stats[b].area))
@@ -323,22 +327,12 @@ struct ComponentStats {
 }
 
 impl ComponentStats {
-    fn new(scene: &Scene, c: &Component) -> Self {
+    /// `first`: each vertex's first vertex at the same coordinates
+    /// ([`Scene::first_at_same_place`]).
+    fn new(scene: &Scene, c: &Component, first: &[u32]) -> Self {
         let p = |v: u32| scene.positions[v as usize];
         let (mut area, mut weighted) = (0.0, DVec3::ZERO);
-        // Closedness is the surface's, not its texture layout's: vertices at exactly the same
-        // coordinates (a UV seam's copies, in a glTF) are one. Regression: the ICT head as a
-        // GLB (seams split) had no closed eyeball.
-        let mut same: std::collections::HashMap<[u64; 3], u32> = Default::default();
-        let welded: std::collections::HashMap<u32, u32> = c
-            .vertices
-            .iter()
-            .map(|&v| {
-                let key = p(v).to_array().map(|x| (x + 0.0).to_bits());
-                (v, *same.entry(key).or_insert(v))
-            })
-            .collect();
-        let weld = |v: u32| welded.get(&v).copied().unwrap_or(v);
+        let weld = |v: u32| first.get(v as usize).copied().unwrap_or(v);
         let mut edges: std::collections::HashMap<(u32, u32), i32> = Default::default();
         for &t in &c.triangles {
             let [a, b, cc] = scene.triangles[t as usize];
