@@ -39,9 +39,14 @@ fn the_whole_head_moves_like_the_captures() {
             "{name}: {ratio} of the captured motion"
         );
     }
-    // The mouth's lining moves with the lips: smile, stretch and frown on the whole head are
-    // within 0.05 of the narrow face; the jaw above 0.85.
+    // The mouth's lining moves with the lips (reached along the skin, so the inside of each
+    // lip takes its own lip's motion) and, in the jaw targets, with the mandible it lines:
+    // smile, stretch, frown, upper-lip raise and the jaw on the whole head are within 0.05 of
+    // the narrow face; jawOpen above 0.93 (0.92 with the lining fading to zero instead).
     for name in [
+        "mouthUpperUpLeft",
+        "mouthUpperUpRight",
+        "jawForward",
         "mouthSmileLeft",
         "mouthSmileRight",
         "mouthStretchLeft",
@@ -57,16 +62,17 @@ fn the_whole_head_moves_like_the_captures() {
             r.whole_head
         );
     }
-    assert!(row(&rows, "jawOpen").whole_head > 0.85);
-    // Not yet everywhere (issue 32's note): at most 9 targets lower on the whole head than on
-    // the narrow face by more than 0.05 (mouthLowerDown, mouthClose, mouthUpperUp: the front
-    // face cut from the head is rigged differently at the lips), none by more than 0.25.
+    assert!(row(&rows, "jawOpen").whole_head > 0.93);
+    // Not yet everywhere (issue 32's note): at most 5 targets lower on the whole head than on
+    // the narrow face by more than 0.05 (mouthLowerDown, mouthClose, browOuterUpLeft,
+    // noseSneerLeft: the front face cut from the head is not mirror-meshed, and it is rigged
+    // differently at the lips), none by more than 0.25.
     let worse: Vec<(&str, f64)> = rows
         .iter()
         .filter_map(|r| r.narrow_face.map(|n| (r.name.as_str(), r.whole_head - n)))
         .filter(|&(_, d)| d < -0.05)
         .collect();
     eprintln!("lower by more than 0.05: {worse:?}");
-    assert!(worse.len() <= 9, "{worse:?}");
+    assert!(worse.len() <= 5, "{worse:?}");
     assert!(worse.iter().all(|&(_, d)| d > -0.25), "{worse:?}");
 }

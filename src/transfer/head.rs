@@ -4,10 +4,14 @@
 //!
 //! - **Skin in the front face**: the rig's own displacement.
 //! - **The rest of the skin** (scalp, ears, neck, the eye sockets' and the mouth's linings):
-//!   the displacement of the nearest vertex on the front face's border, times a falloff that is
-//!   1 on the border and reaches 0 at [`FALLOFF`] interocular distances from it
-//!   (`1 − smoothstep`; the mouth's lining at [`LINING_FALLOFF`]), so there is no seam where
-//!   the simulated region ends and the back of the head stays still.
+//!   the displacement of the front face's border vertex nearest along the skin
+//!   ([`super::along_surface`]: the inside of a lip takes its own lip's motion, not the other
+//!   lip's across the mouth), times a falloff that is 1 on the border and reaches 0 at
+//!   [`FALLOFF`] interocular distances from it along the skin (`1 − smoothstep`; the mouth's
+//!   lining at [`LINING_FALLOFF`]), so there is no seam where the simulated region ends and the
+//!   back of the head stays still. The mouth's lining is attached to the bone it lines: in
+//!   the jaw controls, what the falloff takes from the border's motion it gives to the
+//!   mandible's, in the lower row's share (as the gums).
 //! - **Lower teeth**: the rig's own mandible ([`face_prep::jaw::Jaw::activation`]) in the jaw
 //!   controls — the same rigid motion the jaw's contour is given — and still in every other
 //!   control. **Gums and tongue** take that motion in the share of their distance to the upper
@@ -93,18 +97,22 @@ pub fn carry_to_head(
         })
         .collect();
     let border_tree = tree_of(&border, |b| mesh.vertices[b as usize]);
+    let along_skin = border_along_skin(scene, parts, front, mesh, &border, &first);
     let mouth_tree = tree_of(&mouth_parts, |m| scene.positions[m as usize]);
-    // Each skin vertex outside the face: its border vertex and weight.
-    let skin_source: Vec<Option<(u32, f64)>> = (0..n)
+    let rows = Rows::new(scene, &kind_of);
+    // Each skin vertex outside the face: its border vertex, that vertex's weight, and the
+    // share of the jaw's motion the rest takes (the lining's attachment to the bone).
+    let skin_source: Vec<Option<(u32, f64, f64)>> = (0..n)
         .map(|v| {
             if kind_of[v] != Some(PartKind::Skin) {
                 return None;
             }
             if let Some(m) = in_face[v] {
-                return Some((m, 1.0));
+                return Some((m, 1.0, 0.0));
             }
             let p = scene.positions[v];
-            let (b, d) = border_tree.nearest(p)?;
+            let welded = first.get(v).map_or(v, |&f| f as usize);
+            let (b, d) = along_skin[welded].or_else(|| border_tree.nearest(p))?;
             let lining = mouth_tree
                 .nearest(p)
                 .is_some_and(|(_, to_teeth)| to_teeth < LINING_NEAR * iod);
@@ -115,14 +123,14 @@ pub fn carry_to_head(
             };
             let t = (d / reach).clamp(0.0, 1.0);
             let w = 1.0 - t * t * (3.0 - 2.0 * t);
-            (w > 0.0).then_some((b, w))
+            let bone = if lining { rows.lower_share(p) } else { 0.0 };
+            (w > 0.0 || bone > 0.0).then_some((b, w, bone))
         })
         .collect();
     let skin: Vec<u32> = (0..n as u32)
         .filter(|&v| kind_of[v as usize] == Some(PartKind::Skin))
         .collect();
     let skin_tree = tree_of(&skin, |s| scene.positions[s as usize]);
-    let rows = Rows::new(scene, &kind_of);
     // What every other vertex follows, found once for all controls.
     let follow: Vec<Follow> = (0..n)
         .map(|v| {
@@ -146,10 +154,6 @@ pub fn carry_to_head(
         .zip(&face.muscle_ids)
         .map(|(field, id)| {
             let at = |m: u32| field.get(m as usize).copied().unwrap_or(DVec3::ZERO);
-            let mut out: Vec<DVec3> = skin_source
-                .iter()
-                .map(|s| s.map_or(DVec3::ZERO, |(m, w)| w * at(m)))
-                .collect();
             // The mandible's motion at slider +1 (−1 is the full activation).
             let mode = match MuscleKind::from_id(id).map(MuscleKind::generator) {
                 Some(Generator::Jaw(mode)) => Some(mode),
@@ -161,6 +165,20 @@ pub fn carry_to_head(
                     -input_from_canonical.transform_vector3(jaw.activation(mode, q, mm))
                 })
             };
+            let mut out: Vec<DVec3> = skin_source
+                .iter()
+                .zip(&scene.positions)
+                .map(|(s, &p)| {
+                    s.map_or(DVec3::ZERO, |(m, w, share)| {
+                        let attached = if share > 0.0 && mode.is_some() {
+                            share * bone(p)
+                        } else {
+                            DVec3::ZERO
+                        };
+                        w * at(m) + (1.0 - w) * attached
+                    })
+                })
+                .collect();
             for v in 0..n {
                 match follow[v] {
                     Follow::Jaw(share) => out[v] = share * bone(scene.positions[v]),
@@ -183,6 +201,39 @@ pub fn carry_to_head(
         basis,
         named_fields,
     }
+}
+
+/// For every scene vertex (by its first copy at the same place), the front face's border
+/// vertex (a vertex of `mesh`) nearest along the skin's edges, and how far.
+fn border_along_skin(
+    scene: &Scene,
+    parts: &HeadParts,
+    front: &FrontFace,
+    mesh: &FaceMesh,
+    border: &[u32],
+    first: &[u32],
+) -> Vec<Option<(u32, f64)>> {
+    let weld = |v: u32| first.get(v as usize).copied().unwrap_or(v);
+    let mut on_border = vec![false; mesh.vertices.len()];
+    border.iter().for_each(|&b| on_border[b as usize] = true);
+    let sources: Vec<(u32, u32)> = front
+        .scene_vertex
+        .iter()
+        .zip(&mesh.input_to_vertex)
+        .filter_map(|(&v, m)| m.filter(|&m| on_border[m as usize]).map(|m| (weld(v), m)))
+        .collect();
+    let skin_triangles: Vec<[u32; 3]> = parts
+        .components
+        .iter()
+        .zip(&parts.kinds)
+        .filter(|(_, k)| **k == PartKind::Skin)
+        .flat_map(|(c, _)| {
+            c.triangles
+                .iter()
+                .map(|&t| scene.triangles[t as usize].map(weld))
+        })
+        .collect();
+    super::along_surface::nearest_source(&scene.positions, &skin_triangles, &sources)
 }
 
 /// ARKit's eight gaze targets and VRM's four, with lid parts following the skin (none without

@@ -6,6 +6,7 @@
 //! harmonically ([`crate::copy::rolled_in::hang_from_margins`]); the input's mouth corners that
 //! the copy does not hold follow the commissure.
 
+pub mod along_surface;
 mod carry;
 pub mod gaze;
 pub mod head;

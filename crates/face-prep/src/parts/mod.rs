@@ -145,9 +145,6 @@ pub fn find_parts(scene: &Scene) -> Result<HeadParts, PartsError> {
     if components.is_empty() {
         return Err(PartsError::Empty);
     }
-    // Closedness is the surface's, not its texture layout's: vertices at exactly the same
-    // coordinates (a UV seam's copies, in a glTF) are one. Regression: the ICT head as a GLB
-    // (seams split) had no closed eyeball.
     let first = scene.first_at_same_place();
     let stats: Vec<ComponentStats> = components
         .iter()
@@ -328,7 +325,9 @@ struct ComponentStats {
 
 impl ComponentStats {
     /// `first`: each vertex's first vertex at the same coordinates
-    /// ([`Scene::first_at_same_place`]).
+    /// ([`Scene::first_at_same_place`]). Closedness is the surface's, not its texture
+    /// layout's: vertices at exactly the same coordinates (a UV seam's copies, in a glTF) are
+    /// one. Regression: the ICT head as a GLB (seams split) had no closed eyeball.
     fn new(scene: &Scene, c: &Component, first: &[u32]) -> Self {
         let p = |v: u32| scene.positions[v as usize];
         let (mut area, mut weighted) = (0.0, DVec3::ZERO);
