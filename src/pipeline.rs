@@ -23,7 +23,7 @@ use crate::transfer::Transfer;
 pub fn prepare(mesh: &FaceMesh, params: &PipelineParams) -> Result<PreparedRig, PipelineError> {
     params.validate()?;
     face_prep::check_not_scrambled(&mesh.vertices, &mesh.triangles)?;
-    let Some(stand_in) = crate::copy::symmetrize::stand_in(mesh) else {
+    let Some(stand_in) = crate::copy::symmetrize::stand_in(mesh, params.outline_is_cut) else {
         return prepare_as_written(mesh, params);
     };
     let inner = prepare_as_written(&stand_in.mesh, params)?;
@@ -176,7 +176,7 @@ fn build_shape(
 ) -> Result<FaceModel, PipelineError> {
     params.validate()?;
     face_prep::check_not_scrambled(&mesh.vertices, &mesh.triangles)?;
-    let Some(stand_in) = crate::copy::symmetrize::stand_in(mesh) else {
+    let Some(stand_in) = crate::copy::symmetrize::stand_in(mesh, params.outline_is_cut) else {
         return build_as_written(mesh, params, control);
     };
     let inner = build_as_written(&stand_in.mesh, params, control)?;

@@ -44,6 +44,10 @@ fn the_whole_head_moves_like_the_captures() {
     // smile, stretch, frown, upper-lip raise and the jaw on the whole head are within 0.05 of
     // the narrow face; jawOpen above 0.93 (0.92 with the lining fading to zero instead).
     for name in [
+        "browOuterUpLeft",
+        "browOuterUpRight",
+        "noseSneerLeft",
+        "noseSneerRight",
         "mouthUpperUpLeft",
         "mouthUpperUpRight",
         "jawForward",
@@ -63,16 +67,29 @@ fn the_whole_head_moves_like_the_captures() {
         );
     }
     assert!(row(&rows, "jawOpen").whole_head > 0.93);
-    // Not yet everywhere (issue 32's note): at most 5 targets lower on the whole head than on
-    // the narrow face by more than 0.05 (mouthLowerDown, mouthClose, browOuterUpLeft,
-    // noseSneerLeft: the front face cut from the head is not mirror-meshed, and it is rigged
-    // differently at the lips), none by more than 0.25.
+    // Left and right alike: the front face is built on its mirror-meshed stand-in (its outline
+    // is facebem's own cut, `PipelineParams::outline_is_cut`); on the head's own triangles
+    // mouthLowerDown was 0.57 left and 0.65 right.
+    for r in rows.iter().filter(|r| r.name.ends_with("Left")) {
+        let right = row(&rows, &r.name.replace("Left", "Right"));
+        assert!(
+            (r.whole_head - right.whole_head).abs() < 0.01,
+            "{}: {} against {}",
+            r.name,
+            r.whole_head,
+            right.whole_head
+        );
+    }
+    // Not yet everywhere (issue 32's note): at most 6 targets lower on the whole head than on
+    // the narrow face by more than 0.05 (cheekPuff, mouthClose, mouthLowerDown,
+    // mouthRollLower, mouthShrugLower: the lower lip and the cheek's lining), none by more
+    // than 0.1.
     let worse: Vec<(&str, f64)> = rows
         .iter()
         .filter_map(|r| r.narrow_face.map(|n| (r.name.as_str(), r.whole_head - n)))
         .filter(|&(_, d)| d < -0.05)
         .collect();
     eprintln!("lower by more than 0.05: {worse:?}");
-    assert!(worse.len() <= 5, "{worse:?}");
-    assert!(worse.iter().all(|&(_, d)| d > -0.25), "{worse:?}");
+    assert!(worse.len() <= 6, "{worse:?}");
+    assert!(worse.iter().all(|&(_, d)| d > -0.1), "{worse:?}");
 }

@@ -315,3 +315,69 @@ fn a_retriangulated_face_is_invariant_to_how_the_file_is_written() {
     );
     assert!(worst.0 <= 0.02, "{}: {:.4}", worst.1, worst.0);
 }
+
+/// MediaPipe's face with one more triangle on the outer contour of its left side (an "ear" of
+/// one edge's length, in the face's plane there): symmetric in shape but for its outline, as a
+/// cut through a head's triangles leaves it.
+fn with_an_ear_on_the_outline() -> face_prep::FaceMesh {
+    let face = load("mediapipe_canonical_4loop.obj");
+    let (v, t) = (&face.vertices, &face.triangles);
+    let loops = face_prep::topology::validate(v, t).unwrap();
+    let outer = loops.iter().max_by_key(|l| l.len()).unwrap();
+    let x_max = v.iter().map(|p| p.x).fold(f64::NEG_INFINITY, f64::max);
+    // An outline edge well on the left (+x) side, and the triangle that holds it.
+    let (tri, k) = t
+        .iter()
+        .enumerate()
+        .flat_map(|(i, _)| (0..3).map(move |k| (i, k)))
+        .find(|&(i, k)| {
+            let (a, b) = (t[i][k], t[i][(k + 1) % 3]);
+            let on = |x: u32| outer.contains(&x);
+            on(a) && on(b) && v[a as usize].x > 0.5 * x_max && v[b as usize].x > 0.5 * x_max
+        })
+        .unwrap();
+    let [a, b, c] = [t[tri][k], t[tri][(k + 1) % 3], t[tri][(k + 2) % 3]];
+    let (pa, pb, pc) = (v[a as usize], v[b as usize], v[c as usize]);
+    let mid = 0.5 * (pa + pb);
+    let out = (mid - pc).normalize();
+    let mut vertices = v.clone();
+    vertices.push(mid + out * pa.distance(pb));
+    let mut triangles = t.clone();
+    triangles.push([b, a, (vertices.len() - 1) as u32]);
+    face_prep::FaceMesh::from_triangles(&vertices, &triangles).unwrap()
+}
+
+/// Where a face's outline is a cut facebem made through a head's triangles
+/// (`PipelineParams::outline_is_cut`, a head's front face), the outline is left out of the
+/// mirror-symmetry test: the face with one triangle more on its left outline is built on its
+/// mirror-meshed stand-in. As the user's own outline (the default), the same triangle is part
+/// of the face's shape, and the face keeps its own triangles.
+#[test]
+fn a_cut_outline_is_not_the_faces_shape() {
+    let mesh = with_an_ear_on_the_outline();
+    let own = facebem::prepare(&mesh, &PipelineParams::default()).unwrap();
+    assert_eq!(own.simplify_path, None);
+    let cut = PipelineParams {
+        outline_is_cut: true,
+        ..PipelineParams::default()
+    };
+    let stand_in = facebem::prepare(&mesh, &cut).unwrap();
+    assert_eq!(stand_in.simplify_path, Some(SimplifyPath::Symmetrized));
+    // Its interior is still tested: a cheek vertex (inside the face, not on its outline)
+    // pushed out keeps the face's own triangles.
+    let mut pushed = mesh.clone();
+    let loops = face_prep::topology::validate(&pushed.vertices, &pushed.triangles).unwrap();
+    let on_loop: std::collections::HashSet<u32> = loops.iter().flatten().copied().collect();
+    let x_max = pushed.vertices.iter().map(|p| p.x).fold(f64::MIN, f64::max);
+    let v = (0..pushed.vertices.len() as u32)
+        .filter(|v| !on_loop.contains(v))
+        .min_by(|&a, &b| {
+            let d = |v: u32| (pushed.vertices[v as usize].x - 0.8 * x_max).abs();
+            d(a).total_cmp(&d(b))
+        })
+        .unwrap();
+    // 1.2 % of the face's half-width: above 1 % of the eye distance, twice the tolerance.
+    pushed.vertices[v as usize].z += 0.012 * x_max;
+    let prepared = facebem::prepare(&pushed, &cut).unwrap();
+    assert_eq!(prepared.simplify_path, None);
+}

@@ -64,6 +64,17 @@ pub fn mirror_deviation(
     triangles: &[[u32; 3]],
     tolerance: f64,
 ) -> Option<f64> {
+    mirror_deviation_of(positions, positions, triangles, tolerance)
+}
+
+/// [`mirror_deviation`] over the points `queries` only (mirrored about x = 0), against the
+/// surface `positions`/`triangles`.
+fn mirror_deviation_of(
+    queries: &[DVec3],
+    positions: &[DVec3],
+    triangles: &[[u32; 3]],
+    tolerance: f64,
+) -> Option<f64> {
     let corners: Vec<[DVec3; 3]> = triangles
         .iter()
         .map(|t| t.map(|v| positions[v as usize]))
@@ -71,7 +82,7 @@ pub fn mirror_deviation(
     let bvh = face_prep::bvh::TriangleBvh::new(&corners);
     let reach = DVec3::splat(tolerance);
     let mut largest: f64 = 0.0;
-    for &p in positions {
+    for &p in queries {
         let q = DVec3::new(-p.x, p.y, p.z);
         let d = bvh
             .overlapping(q - reach, q + reach)
@@ -204,9 +215,28 @@ fn cut_left_half(positions: &[DVec3], triangles: &[[u32; 3]]) -> Option<Cut> {
 /// canonical frame, with [`Canonical::input_vertex`] naming for each vertex the input vertex it
 /// came from (for a mirrored vertex, the input vertex nearest to its mirror image among the
 /// corners of the triangle closest to it). `None` when the shape is not symmetric, or the glued halves are not a valid surface
-/// with the face's loops.
-pub(crate) fn symmetrized(canon: &Canonical) -> Option<Canonical> {
-    mirror_deviation(&canon.positions, &canon.triangles, SHAPE_TOLERANCE_IOD)?;
+/// with the face's loops. With `outline_is_cut` (a head's front face,
+/// [`crate::PipelineParams::outline_is_cut`]) the outer contour's vertices are left out of the
+/// symmetry test: its right half is then the mirror image of the left half's outline.
+pub(crate) fn symmetrized(canon: &Canonical, outline_is_cut: bool) -> Option<Canonical> {
+    let queries: Vec<DVec3> = if outline_is_cut {
+        let outer = outer_contour(canon);
+        canon
+            .positions
+            .iter()
+            .zip(&outer)
+            .filter(|&(_, &o)| !o)
+            .map(|(p, _)| *p)
+            .collect()
+    } else {
+        canon.positions.clone()
+    };
+    mirror_deviation_of(
+        &queries,
+        &canon.positions,
+        &canon.triangles,
+        SHAPE_TOLERANCE_IOD,
+    )?;
     let cut = cut_left_half(&canon.positions, &canon.triangles)?;
     // Only the vertices the left half uses, midline ones (x = 0) once, the others twice.
     let mut index = vec![u32::MAX; cut.positions.len()];
@@ -353,10 +383,36 @@ pub(crate) struct StandIn {
     pub(crate) tolerance: f64,
 }
 
+/// Per vertex of `canon`: on its outer contour (a boundary vertex on neither an eye's loop nor
+/// the mouth's).
+fn outer_contour(canon: &Canonical) -> Vec<bool> {
+    let mut count: HashMap<(u32, u32), u32> = HashMap::new();
+    for t in &canon.triangles {
+        for k in 0..3 {
+            let (a, b) = (t[k], t[(k + 1) % 3]);
+            *count.entry((a.min(b), a.max(b))).or_default() += 1;
+        }
+    }
+    let mut outer = vec![false; canon.positions.len()];
+    for (&(a, b), _) in count.iter().filter(|&(_, &c)| c == 1) {
+        for v in [a, b] {
+            if let Some(o) = outer.get_mut(v as usize) {
+                *o = true;
+            }
+        }
+    }
+    for &v in canon.mouth.iter().chain(canon.eyes.iter().flatten()) {
+        if let Some(o) = outer.get_mut(v as usize) {
+            *o = false;
+        }
+    }
+    outer
+}
+
 /// The mirror-meshed stand-in of `mesh` when the face is mirror-symmetric in shape within
 /// [`SHAPE_TOLERANCE_IOD`] but not mirror-meshed; `None` when it is mirror-meshed already, not
-/// symmetric, or has no canonical frame.
-pub(crate) fn stand_in(mesh: &face_prep::FaceMesh) -> Option<StandIn> {
+/// symmetric, or has no canonical frame. `outline_is_cut`: as [`symmetrized`].
+pub(crate) fn stand_in(mesh: &face_prep::FaceMesh, outline_is_cut: bool) -> Option<StandIn> {
     let (vertices, triangles) = (&mesh.vertices, &mesh.triangles);
     let canon = Canonical::of(vertices, triangles)?;
     if crate::copy::simplify::mirror_map(&canon.positions, &canon.triangles).is_some() {
@@ -373,7 +429,7 @@ pub(crate) fn stand_in(mesh: &face_prep::FaceMesh) -> Option<StandIn> {
             .collect(),
         ..canon
     };
-    let sym = symmetrized(&exact)?;
+    let sym = symmetrized(&exact, outline_is_cut)?;
     let cut = sym.to_input(&Simplified::whole(&sym.positions, &sym.triangles));
     let mesh = face_prep::FaceMesh::from_triangles(&cut.vertices, &cut.triangles).ok()?;
     let mut original_vertex = vec![0u32; mesh.vertices.len()];

@@ -28,6 +28,13 @@ pub struct PipelineParams {
     /// [`face_prep::FeatureBoxes`]): muscles and skull are placed from them. With `muscles`
     /// set too, the boxes decide the skull and `muscles` the muscles.
     pub boxes: Option<face_prep::FeatureBoxes>,
+    /// The face's outer contour is a cut facebem made through a head's triangles (a head's
+    /// front face, [`face_prep::parts::front_face`]): the mirror-symmetry test of
+    /// [`crate::copy::symmetrize`] leaves the outer contour's vertices out, because where such
+    /// a cut runs is the head's triangulation (one triangle more or less on either side), not
+    /// the face's shape. Default false: a user's own outline is part of the face's shape.
+    #[serde(default)]
+    pub outline_is_cut: bool,
 }
 
 impl Default for PipelineParams {
@@ -40,6 +47,7 @@ impl Default for PipelineParams {
             quadrature: bem_core::QuadratureParams::default(),
             muscles: None,
             boxes: None,
+            outline_is_cut: false,
         }
     }
 }

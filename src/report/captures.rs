@@ -111,7 +111,11 @@ pub fn head_and_narrow_face(
     let parts = find_parts(&scene)?;
     let front = front_face(&scene, &parts)?;
     let mesh = face_prep::FaceMesh::from_triangles(&front.positions, &front.triangles)?;
-    let model = build_face_model(&mesh, &params, &Control::new())?;
+    let head_params = PipelineParams {
+        outline_is_cut: true,
+        ..params.clone()
+    };
+    let model = build_face_model(&mesh, &head_params, &Control::new())?;
     let head = crate::transfer::head::carry_to_head(
         &scene,
         &parts,
@@ -120,9 +124,10 @@ pub fn head_and_narrow_face(
         &model.rig,
         &model.basis,
     );
+    let plain = model.gltf_params(&GltfParams::default());
     let gltf = GltfParams {
-        named_fields: head.named_fields.clone(),
-        ..model.gltf_params(&GltfParams::default())
+        named_fields: head.named_fields_for(plain.names),
+        ..plain
     };
     let n = scene.positions.len();
     let mut eyeball = vec![false; n];

@@ -29,6 +29,7 @@ use face_prep::parts::{FrontFace, HeadParts, PartKind, Scene};
 use face_prep::{FaceMesh, FaceRig, Generator, MuscleKind};
 use glam::DVec3;
 
+use super::eye_contact::EyeContact;
 use super::nearest::PointTree;
 use super::{gaze, tongue};
 use crate::model::MuscleBasis;
@@ -53,8 +54,50 @@ pub const LINING_NEAR: f64 = 0.1;
 pub struct HeadBasis {
     /// Every control's field on every vertex of the head.
     pub basis: MuscleBasis,
-    /// (standard name, field at weight 1 on every vertex): the gaze targets and `tongueOut`.
+    /// (standard name, field at weight 1 on every vertex): the gaze targets and `tongueOut`,
+    /// kept off the eyeballs.
     pub named_fields: Vec<(String, Vec<DVec3>)>,
+    /// The lids' contact with the eyeballs, for the targets made of the controls' fields
+    /// ([`HeadBasis::named_fields_for`]).
+    pub contact: EyeContact,
+}
+
+impl HeadBasis {
+    /// Every ARKit and VRM target of the sets `names` on the whole head — those the controls
+    /// make and [`HeadBasis::named_fields`] — each kept off the eyeballs ([`EyeContact`]; FACS
+    /// units and facebem's own control targets are left to the controls): to pass as
+    /// [`crate::export::GltfParams::named_fields`], which replace what the controls make.
+    /// (A sum of corrected targets may still touch an eyeball where two targets push the
+    /// same lid; each target alone does not.)
+    pub fn named_fields_for(
+        &self,
+        names: crate::expressions::NameSets,
+    ) -> Vec<(String, Vec<DVec3>)> {
+        let (made, _) = crate::expressions::for_rig(names, &self.basis.muscle_ids);
+        let mut out: Vec<(String, Vec<DVec3>)> = made
+            .iter()
+            .filter(|r| {
+                matches!(
+                    r.expression.set,
+                    crate::expressions::NameSet::Arkit | crate::expressions::NameSet::Vrm
+                )
+            })
+            .map(|r| {
+                let mut field = vec![DVec3::ZERO; self.basis.neutral.len()];
+                for (control, &s) in self.basis.displacements.iter().zip(&r.resolved.sliders) {
+                    if s != 0.0 {
+                        for (d, f) in field.iter_mut().zip(control) {
+                            *d += s * *f;
+                        }
+                    }
+                }
+                self.contact.apply(&self.basis.neutral, &mut field);
+                (r.expression.name.to_string(), field)
+            })
+            .collect();
+        out.extend(self.named_fields.iter().cloned());
+        out
+    }
 }
 
 /// The basis of the whole `scene` (its positions and triangles, every part) from the basis
@@ -197,9 +240,21 @@ pub fn carry_to_head(
     };
     let mut named_fields = gaze_fields(scene, parts, &kind_of, &follow);
     named_fields.extend(tongue_out(scene, &kind_of, parts, &basis, iod));
+    let follows: Vec<Option<u32>> = follow
+        .iter()
+        .map(|f| match f {
+            Follow::Skin(s) => Some(*s),
+            _ => None,
+        })
+        .collect();
+    let contact = EyeContact::new(scene, parts, &follows);
+    for (_, field) in &mut named_fields {
+        contact.apply(&scene.positions, field);
+    }
     HeadBasis {
         basis,
         named_fields,
+        contact,
     }
 }
 

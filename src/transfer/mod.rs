@@ -8,6 +8,7 @@
 
 pub mod along_surface;
 mod carry;
+pub mod eye_contact;
 pub mod gaze;
 pub mod head;
 pub mod nearest;

@@ -43,12 +43,13 @@ pub(crate) fn export_head(
     let (model, head) = rig_head(path, &whole, params, solver, force)?;
     let identity: Vec<Option<u32>> = (0..whole.scene.positions.len() as u32).map(Some).collect();
     let layout = facebem::export::ExportLayout::from_obj(&text, &identity)?;
+    let named_fields = head.named_fields_for(model.gltf_params(&gltf_params).names);
     let basis = head.basis;
     let warnings = materials.warnings.clone();
     let params = facebem::export::GltfParams {
         format: facebem::export::GltfFormat::from_path(gltf),
         materials: Some(materials),
-        named_fields: head.named_fields,
+        named_fields,
         mesh_split: Some(mesh_per_part(&whole)),
         ..model.gltf_params(&gltf_params)
     };
@@ -89,7 +90,7 @@ fn export_glb_head(
     facebem::check_output(out, &[path], &["glb", "vrm"], "a GLB or VRM head")?;
     let (model, head) = rig_head(path, &whole, params, solver, force)?;
     let params = facebem::export::GltfParams {
-        named_fields: head.named_fields,
+        named_fields: head.named_fields_for(model.gltf_params(&gltf_params).names),
         ..model.gltf_params(&gltf_params)
     };
     let named = facebem::export::gltf::named_targets(&head.basis, &params)?;
@@ -135,7 +136,11 @@ fn rig_head(
         whole.summary(),
         mesh.triangles.len()
     );
-    let (model, _) = compute(&mesh, None, params, solver.no_cache)?;
+    let params = facebem::PipelineParams {
+        outline_is_cut: true,
+        ..params.clone()
+    };
+    let (model, _) = compute(&mesh, None, &params, solver.no_cache)?;
     check_trust(&model, force)?;
     let head = facebem::transfer::head::carry_to_head(
         &whole.scene,

@@ -48,7 +48,9 @@ pub(super) fn check_fields(
 ) -> Result<(), GltfExportError> {
     let n = basis.neutral.len();
     for (name, field) in &params.named_fields {
-        if crate::expressions::not_modelled(name).is_none_or(|(n, _)| n != name) {
+        let standard = crate::expressions::arkit::NAMES.contains(&name.as_str())
+            || crate::expressions::vrm::NAMES.contains(&name.as_str());
+        if !standard {
             return Err(GltfExportError::NotANamedField(name.clone()));
         }
         if field.len() != n {

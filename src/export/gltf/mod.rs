@@ -152,11 +152,14 @@ pub struct GltfParams {
     /// primitive per material with its colour and embedded texture; `None` (or none used):
     /// one primitive with [`MATERIAL_NAME`].
     pub materials: Option<crate::export::material::ObjMaterials>,
-    /// Fields for names no control makes ([`crate::expressions::NOT_MODELLED`]: the gaze
+    /// Fields for ARKit and VRM names: (standard name, displacement of every basis vertex at
+    /// weight 1). For names no control makes ([`crate::expressions::NOT_MODELLED`]: the gaze
     /// targets and `tongueOut` of a head with eyeballs and a tongue,
-    /// [`crate::transfer::head::HeadBasis::named_fields`]): (standard name, displacement of
-    /// every basis vertex at weight 1). Written in the standard's order when the name's set is
-    /// exported; any other name, or a field of the wrong length, is an error.
+    /// [`crate::transfer::head::HeadBasis::named_fields`]), and in place of what the controls
+    /// make of a name (a head's targets kept off its eyeballs,
+    /// [`crate::transfer::head::HeadBasis::named_fields_for`]). Written in the standard's
+    /// order when the name's set is exported; any other name, or a field of the wrong length,
+    /// is an error.
     pub named_fields: Vec<(String, Vec<glam::DVec3>)>,
     /// One mesh (and node) per group of triangles instead of one mesh: a head's parts. All
     /// meshes share the vertices and carry every target.
@@ -225,9 +228,8 @@ pub enum GltfExportError {
         /// Vectors found.
         got: usize,
     },
-    /// A named field ([`GltfParams::named_fields`]) is for a name controls make, or no
-    /// standard's name.
-    #[error("{0:?} is not a name that only a named field makes (the gaze targets, tongueOut)")]
+    /// A named field ([`GltfParams::named_fields`]) is for no ARKit or VRM name.
+    #[error("{0:?} is not an ARKit or VRM name, for which a named field can be given")]
     NotANamedField(String),
     /// A named field does not have one vector per vertex.
     #[error("the field of {name} has {len} vectors for {vertices} vertices")]

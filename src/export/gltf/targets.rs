@@ -96,7 +96,17 @@ pub(super) fn morph_targets(
     let spelled = |name: &str| params.arkit_naming.name(name);
     // The controls' expressions and the named fields, in the standards' order.
     let mut standard: Vec<(NameSet, &str, Vec<DVec3>)> = Vec::new();
-    for r in &named {
+    // A named field replaces what the controls would make of its name (a whole head's
+    // targets kept off the eyeballs, `crate::transfer::head::HeadBasis::named_fields_for`).
+    let replaced: std::collections::HashSet<&str> = params
+        .named_fields
+        .iter()
+        .map(|(n, _)| n.as_str())
+        .collect();
+    for r in named
+        .iter()
+        .filter(|r| !replaced.contains(r.expression.name))
+    {
         let e = r.expression;
         if !r.resolved.missing.is_empty() {
             partial.insert(spelled(e.name), json!(r.resolved.missing));
