@@ -109,6 +109,18 @@ pub fn add_targets(
         )));
     }
     let mut added = Added::default();
+    // Normals on the surface, not the texture layout: UV seams' copies welded.
+    let first = scene.first_at_same_place();
+    let welded: Vec<[u32; 3]> = scene
+        .triangles
+        .iter()
+        .map(|t| t.map(|v| first.get(v as usize).copied().unwrap_or(v)))
+        .collect();
+    let neutral_normals = crate::export::gltf::vertex_normals(&scene.positions, &welded);
+    // One buffer view of zeros per vertex count, shared by every target that leaves an
+    // accessor's vertices still (readers such as the `gltf` crate refuse an accessor without
+    // a buffer view, which the specification allows).
+    let mut zeros: std::collections::HashMap<u32, usize> = Default::default();
     // (mesh, index of our first target in it)
     let mut first_target: Vec<(usize, usize)> = Vec::new();
     for (mesh, placement) in scene.gltf_meshes.iter().enumerate() {
@@ -141,8 +153,34 @@ pub fn add_targets(
         // deltas, the largest of the primitives' copies of each vertex.
         let mut accessors: Vec<(u32, Vec<Value>)> =
             by_accessor.iter().map(|a| (a.0, Vec::new())).collect();
+        let mut normal_accessors: Vec<Vec<Value>> = vec![Vec::new(); by_accessor.len()];
+        let with_normals = primitives_with_normals(&root, mesh);
+        // Normals go from the world to the mesh's frame by the transpose of its linear part.
+        let mesh_from_world_normal = DMat3::from_mat4(placement.world_from_mesh).transpose();
         for (_, field) in targets {
+            let normals = with_normals.then(|| {
+                let moved: Vec<DVec3> = scene
+                    .positions
+                    .iter()
+                    .zip(field)
+                    .map(|(p, d)| *p + *d)
+                    .collect();
+                crate::export::gltf::vertex_normals(&moved, &welded)
+            });
             for (slot, (_, count, ranges)) in by_accessor.iter().enumerate() {
+                if let Some(normals) = &normals {
+                    let local = normal_deltas(
+                        &neutral_normals,
+                        normals,
+                        &first,
+                        ranges,
+                        *count,
+                        mesh_from_world_normal,
+                    );
+                    normal_accessors[slot].push(delta_accessor(
+                        &mut root, &mut bin, &mut zeros, *count, &local,
+                    )?);
+                }
                 let mut local = vec![DVec3::ZERO; *count as usize];
                 for r in ranges {
                     for (out, d) in local.iter_mut().zip(&field[r.clone()]) {
@@ -152,11 +190,11 @@ pub fn add_targets(
                         }
                     }
                 }
-                let id = delta_accessor(&mut root, &mut bin, *count, &local)?;
+                let id = delta_accessor(&mut root, &mut bin, &mut zeros, *count, &local)?;
                 accessors[slot].1.push(id);
             }
         }
-        let base = append_to_mesh(&mut root, mesh, targets, &accessors)?;
+        let base = append_to_mesh(&mut root, mesh, targets, &accessors, &normal_accessors)?;
         first_target.push((mesh, base));
         added.meshes.push(mesh);
     }
@@ -173,11 +211,12 @@ pub fn add_targets(
     Ok((write_glb(&root, &bin)?, added))
 }
 
-/// Appends one target's deltas (`count` of them) as an accessor (no buffer view when all
-/// zero) and returns its index as JSON.
+/// Appends one target's deltas (`count` of them) as an accessor (on the shared view of
+/// zeros, `zeros` by count, when all are zero) and returns its index as JSON.
 fn delta_accessor(
     root: &mut Value,
     bin: &mut Vec<u8>,
+    zeros: &mut std::collections::HashMap<u32, usize>,
     count: u32,
     deltas: &[DVec3],
 ) -> Result<Value, UserGltfError> {
@@ -221,6 +260,14 @@ fn delta_accessor(
             .flat_map(|c| c.to_le_bytes())
             .collect();
         accessor["bufferView"] = json!(append_view(root, bin, &bytes, Some(34962)));
+    } else {
+        let view = *zeros.entry(count).or_insert_with(|| {
+            let view = append_view(root, bin, &vec![0u8; 12 * count as usize], Some(34962));
+            // Vertex accessors sharing a view need its stride.
+            root["bufferViews"][view]["byteStride"] = json!(12);
+            view
+        });
+        accessor["bufferView"] = json!(view);
     }
     accessor["min"] = json!(lo);
     accessor["max"] = json!(hi);
@@ -262,6 +309,7 @@ fn append_to_mesh(
     mesh: usize,
     targets: &[(String, Vec<DVec3>)],
     accessors: &[(u32, Vec<Value>)],
+    normal_accessors: &[Vec<Value>],
 ) -> Result<usize, UserGltfError> {
     let m = &mut root["meshes"][mesh];
     let primitives = m["primitives"].as_array().map_or(0, Vec::len);
@@ -288,16 +336,27 @@ fn append_to_mesh(
             )));
         }
         let position = prim["attributes"]["POSITION"].as_u64();
-        let Some((_, ids)) = accessors.iter().find(|a| Some(u64::from(a.0)) == position) else {
+        let Some(slot) = accessors
+            .iter()
+            .position(|a| Some(u64::from(a.0)) == position)
+        else {
             return Err(UserGltfError::Mismatch(format!(
                 "mesh {mesh} primitive {p}'s POSITION"
             )));
         };
+        let normals = prim["attributes"].get("NORMAL").is_some();
         if !prim["targets"].is_array() {
             prim["targets"] = json!([]);
         }
         if let Some(list) = prim["targets"].as_array_mut() {
-            list.extend(ids.iter().map(|id| json!({"POSITION": id})));
+            for (k, id) in accessors[slot].1.iter().enumerate() {
+                match normal_accessors.get(slot).and_then(|n| n.get(k)) {
+                    Some(normal) if normals => {
+                        list.push(json!({"POSITION": id, "NORMAL": normal}));
+                    }
+                    _ => list.push(json!({"POSITION": id})),
+                }
+            }
         }
     }
     names.extend(targets.iter().map(|(n, _)| json!(n)));
@@ -310,6 +369,44 @@ fn append_to_mesh(
     weights.resize(total, json!(0.0));
     m["weights"] = Value::Array(weights);
     Ok(existing)
+}
+
+/// Normal deltas shorter than this (a turn of 0.22°, below what shading shows) are written as
+/// zero, so that a target's normals are stored only where it bends the surface.
+pub const NORMAL_DELTA_FLOOR: f64 = 1.0 / 256.0;
+
+/// Whether any primitive of `mesh` has a `NORMAL` attribute (its targets then get normal
+/// deltas, so that the lighting follows the moved surface).
+fn primitives_with_normals(root: &Value, mesh: usize) -> bool {
+    root["meshes"][mesh]["primitives"]
+        .as_array()
+        .is_some_and(|ps| ps.iter().any(|p| p["attributes"].get("NORMAL").is_some()))
+}
+
+/// The normal deltas of one target on one `POSITION` accessor of `count` vertices (the
+/// primitives' `ranges` of scene vertices): the unit vertex normal of the moved surface less
+/// the neutral one, each in the mesh's frame, at each vertex's first copy at the same place
+/// (`first`). Deltas under [`NORMAL_DELTA_FLOOR`] are written as zero.
+fn normal_deltas(
+    neutral: &[DVec3],
+    moved: &[DVec3],
+    first: &[u32],
+    ranges: &[std::ops::Range<usize>],
+    count: u32,
+    mesh_from_world_normal: DMat3,
+) -> Vec<DVec3> {
+    let mut local = vec![DVec3::ZERO; count as usize];
+    for r in ranges {
+        for (out, v) in local.iter_mut().zip(r.clone()) {
+            let w = first.get(v).map_or(v, |&f| f as usize);
+            let to_mesh = |n: DVec3| (mesh_from_world_normal * n).normalize_or_zero();
+            let d = to_mesh(moved[w]) - to_mesh(neutral[w]);
+            if d.length() >= NORMAL_DELTA_FLOOR && d.length_squared() > out.length_squared() {
+                *out = d;
+            }
+        }
+    }
+    local
 }
 
 /// Binds the VRM expressions (1.0 or 0.x) to the added targets; returns the names bound.

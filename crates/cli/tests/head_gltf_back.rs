@@ -435,7 +435,7 @@ fn facebems_own_glb_of_a_head_is_a_head() {
         String::from_utf8_lossy(&run.stderr)
     );
     let bytes = std::fs::read(&first).unwrap();
-    let (before, abin, after, bbin, _) = round_trip(dir.path(), "again.glb", &bytes);
+    let (before, abin, after, bbin, output) = round_trip(dir.path(), "again.glb", &bytes);
     for key in ["nodes", "materials", "asset"] {
         assert_eq!(before[key], after[key], "{key}");
     }
@@ -457,12 +457,13 @@ fn facebems_own_glb_of_a_head_is_a_head() {
         assert_eq!(p["targets"].as_array().unwrap().len(), names.len());
     }
     // The added targets are sparse where they move few vertices: the binary chunk grows by
-    // less than 60 % of dense deltas (12 bytes a vertex a target).
+    // less than 60 % of dense deltas (12 bytes a vertex a target for the positions, 12 for
+    // the normals, which every primitive of facebem's GLB has).
     let position = &before["meshes"][0]["primitives"][0]["attributes"]["POSITION"];
     let vertices = before["accessors"][position.as_u64().unwrap() as usize]["count"]
         .as_u64()
         .unwrap() as usize;
-    let dense = 12 * vertices * (names.len() - old);
+    let dense = 24 * vertices * (names.len() - old);
     let grown = bbin.len() - abin.len();
     assert!(
         grown * 10 < dense * 6,
@@ -473,4 +474,43 @@ fn facebems_own_glb_of_a_head_is_a_head() {
         let l = v["byteLength"].as_u64().unwrap() as usize;
         assert_eq!(abin[o..o + l], bbin[o..o + l], "buffer view at {o}");
     }
+    normals_follow_the_surface(&output, old, names);
+}
+
+/// The added targets carry normal deltas where the primitive has normals: in jawOpen, every
+/// moved normal stays a unit vector (1e-3) and the chin's turn by more than 3°. Read with the
+/// `gltf` crate (as Bevy reads glTF), which refuses an accessor without a buffer view: the
+/// all-zero targets of the write-back had none (regression; they share a view of zeros now).
+fn normals_follow_the_surface(output: &Path, old: usize, names: &[Value]) {
+    let open = names.iter().position(|n| n == "jawOpen").unwrap();
+    let (doc, buffers, _) = gltf::import(output).unwrap();
+    let (mut checked, mut turned) = (0, 0.0f32);
+    for prim in doc.meshes().next().unwrap().primitives() {
+        let reader = prim.reader(|b| Some(&buffers[b.index()]));
+        let Some(neutral) = reader.read_normals() else {
+            continue;
+        };
+        let neutral: Vec<[f32; 3]> = neutral.collect();
+        for (k, (_, normals, _)) in reader.read_morph_targets().enumerate() {
+            if k < old {
+                continue;
+            }
+            let normals: Vec<[f32; 3]> = normals.expect("a NORMAL delta").collect();
+            if k != open {
+                continue;
+            }
+            for (n, d) in neutral.iter().zip(&normals) {
+                let m = [n[0] + d[0], n[1] + d[1], n[2] + d[2]];
+                let len = (m[0] * m[0] + m[1] * m[1] + m[2] * m[2]).sqrt();
+                assert!((len - 1.0).abs() < 1e-3, "moved normal of length {len}");
+                turned = turned.max((d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt());
+                checked += 1;
+            }
+        }
+    }
+    assert!(checked > 1000, "{checked} normals checked");
+    assert!(
+        turned > 0.05,
+        "the most a normal turns in jawOpen: {turned}"
+    );
 }
