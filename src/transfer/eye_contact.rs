@@ -147,9 +147,12 @@ impl EyeContact {
         EyeContact { eyes, followers }
     }
 
-    /// Moves every skin vertex near an eye that `field` (displacements of the head's vertices
-    /// at `neutral`) would put inside the eyeball out to its surface, and its followers with
-    /// it. Returns how many skin vertices were moved.
+    /// Keeps the skin near each eye off the eyeball in `field` (displacements of the head's
+    /// vertices at `neutral`): first every skin vertex that would come nearer the eyeball than
+    /// its kept clearance is moved out along the ray from the eye's centre; then, for up to
+    /// four rounds, the corners of every skin triangle the eyeball still comes through are
+    /// pushed out by how far, spread over the rings around them. Followers copy their skin
+    /// vertex. Returns how many vertex moves were made (0: the target left the eyes alone).
     ///
     /// ```
     /// use facebem::transfer::eye_contact::EyeContact;
