@@ -5,6 +5,7 @@
 
 pub mod attribution;
 pub mod gltf;
+pub mod head;
 pub mod layout;
 pub mod material;
 pub mod obj;

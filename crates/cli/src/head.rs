@@ -1,7 +1,7 @@
-//! `facebem export` of a whole head (issue 32, first method): its front face is cut from the
-//! skin and rigged like a face mesh, the rig is carried to every vertex of every part
-//! ([`facebem::transfer::head::carry_to_head`]), and the user's OBJ comes back as a glTF with
-//! its own vertices, texture coordinates and materials and the morph targets on all of it.
+//! `facebem export` and `pose` of a whole head (issue 32): its front face is cut from the skin
+//! and rigged like a face mesh, the rig is carried to every vertex of every part
+//! ([`facebem::transfer::head::carry_to_head`]); `export` writes the user's file back with the
+//! morph targets on all of it ([`facebem::export::head::head_gltf`]), `pose` one pose of it.
 
 use std::path::{Path, PathBuf};
 
@@ -12,65 +12,10 @@ use facebem::input::heads::WholeFile;
 use crate::args::SolverArgs;
 use crate::rig::{check_trust, compute};
 
-/// Exports the head read as `whole` from `path` to `gltf`.
+/// Exports the head read as `whole` from `path` to `out`: an OBJ head as a glTF with one mesh
+/// per part, a GLB or VRM head as the user's own file with the targets added
+/// ([`facebem::export::head::head_gltf`]).
 pub(crate) fn export_head(
-    path: &Path,
-    gltf: &Path,
-    whole: WholeFile,
-    gltf_params: facebem::export::GltfParams,
-    params: &facebem::PipelineParams,
-    solver: &SolverArgs,
-    force: bool,
-) -> Result<()> {
-    let is_obj = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .is_some_and(|e| e.eq_ignore_ascii_case("obj"));
-    if !is_obj {
-        return export_glb_head(path, gltf, whole, gltf_params, params, solver, force);
-    }
-    let limits = face_prep::InputLimits::default();
-    let bytes = face_prep::limits::read_input_file(path, &limits)?;
-    let text = String::from_utf8_lossy(&bytes).into_owned();
-    let folder = match path.parent() {
-        Some(f) if !f.as_os_str().is_empty() => f,
-        _ => Path::new("."),
-    };
-    let materials = facebem::export::material::ObjMaterials::load(&text, folder)?;
-    let mut inputs: Vec<&Path> = vec![path];
-    inputs.extend(materials.files_read.iter().map(PathBuf::as_path));
-    facebem::check_output(gltf, &inputs, &["glb", "gltf"], "an OBJ head's glTF export")?;
-    let (model, head) = rig_head(path, &whole, params, solver, force)?;
-    let identity: Vec<Option<u32>> = (0..whole.scene.positions.len() as u32).map(Some).collect();
-    let layout = facebem::export::ExportLayout::from_obj(&text, &identity)?;
-    let named_fields = head.named_fields_for(model.gltf_params(&gltf_params).names);
-    let basis = head.basis;
-    let warnings = materials.warnings.clone();
-    let params = facebem::export::GltfParams {
-        format: facebem::export::GltfFormat::from_path(gltf),
-        materials: Some(materials),
-        named_fields,
-        mesh_split: Some(mesh_per_part(&whole)),
-        ..model.gltf_params(&gltf_params)
-    };
-    let (bytes, summary) = facebem::export::build_gltf(&basis, &layout, &params)?;
-    facebem::write_atomic(gltf, &bytes)?;
-    for w in warnings.iter().chain(&summary.warnings) {
-        eprintln!("warning: {w}");
-    }
-    outln!(
-        "{}: {} morph targets on all {} vertices of the head, {:.0} KB",
-        gltf.display(),
-        summary.target_names.len(),
-        basis.neutral.len(),
-        summary.bytes as f64 / 1000.0
-    );
-    Ok(())
-}
-
-/// Exports the GLB or VRM head read as `whole` from `path` to `out`: the user's own file with
-/// the targets added to every mesh that moves ([`facebem::export::user_gltf::add_targets`]).
-fn export_glb_head(
     path: &Path,
     out: &Path,
     whole: WholeFile,
@@ -80,40 +25,33 @@ fn export_glb_head(
     force: bool,
 ) -> Result<()> {
     let limits = face_prep::InputLimits::default();
-    let bytes = face_prep::limits::read_input_file(path, &limits)?;
-    if bytes.get(0..4) != Some(b"glTF".as_slice()) {
-        bail!(
-            "{}: a .gltf head is not written back (a .glb or .vrm is): save it as .glb first",
-            path.display()
-        );
+    let mut inputs: Vec<PathBuf> = vec![path.to_path_buf()];
+    if facebem::export::head::is_obj(path) {
+        // The material libraries and textures are inputs too: checked before the long rig.
+        let bytes = face_prep::limits::read_input_file(path, &limits)?;
+        let text = String::from_utf8_lossy(&bytes);
+        let folder = match path.parent() {
+            Some(f) if !f.as_os_str().is_empty() => f,
+            _ => Path::new("."),
+        };
+        let materials = facebem::export::material::ObjMaterials::load(&text, folder)?;
+        inputs.extend(materials.files_read);
+        let inputs: Vec<&Path> = inputs.iter().map(PathBuf::as_path).collect();
+        facebem::check_output(out, &inputs, &["glb", "gltf"], "an OBJ head's glTF export")?;
+    } else {
+        // A .gltf's buffers and images are inputs too (it comes back packed into one GLB).
+        inputs.extend(face_prep::input::files_read_by(path));
+        let inputs: Vec<&Path> = inputs.iter().map(PathBuf::as_path).collect();
+        facebem::check_output(out, &inputs, &["glb", "vrm"], "a glTF, GLB or VRM head")?;
     }
-    facebem::check_output(out, &[path], &["glb", "vrm"], "a GLB or VRM head")?;
     let (model, head) = rig_head(path, &whole, params, solver, force)?;
-    let params = facebem::export::GltfParams {
-        named_fields: head.named_fields_for(model.gltf_params(&gltf_params).names),
-        ..model.gltf_params(&gltf_params)
-    };
-    let named = facebem::export::gltf::named_targets(&head.basis, &params)?;
-    let (glb, added) = facebem::export::user_gltf::add_targets(
-        &bytes,
-        &whole.scene,
-        &named.targets,
-        &named.same_as,
-    )
-    .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
-    facebem::write_atomic(out, &glb)?;
-    outln!(
-        "{}: {} morph targets added to {} of its meshes{}, {:.0} KB",
-        out.display(),
-        named.targets.len(),
-        added.meshes.len(),
-        if added.vrm_expressions.is_empty() {
-            String::new()
-        } else {
-            format!(", {} VRM expressions bound", added.vrm_expressions.len())
-        },
-        glb.len() as f64 / 1000.0
-    );
+    let built = facebem::export::head::head_gltf(path, out, &whole, &model, &head, &gltf_params)
+        .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+    facebem::write_atomic(out, &built.bytes)?;
+    for w in &built.warnings {
+        eprintln!("warning: {w}");
+    }
+    outln!("{}: {}", out.display(), built.line);
     Ok(())
 }
 
@@ -153,41 +91,94 @@ fn rig_head(
     Ok((model, head))
 }
 
-/// One mesh per part of the head (skin, each eyeball, each row of teeth, gums and tongue, lid
-/// parts, other), by the scene's triangles (an OBJ's export layout has the same triangles in
-/// the same order).
-fn mesh_per_part(whole: &WholeFile) -> facebem::export::gltf::MeshSplit {
-    use face_prep::parts::{PartKind, Side};
-    const NAMES: [&str; 8] = [
-        "skin",
-        "eyeball_left",
-        "eyeball_right",
-        "upper_teeth",
-        "lower_teeth",
-        "gums_and_tongue",
-        "lid_parts",
-        "other",
-    ];
-    let mut triangle_mesh = vec![7u32; whole.scene.triangles.len()];
-    for (c, kind) in whole.parts.components.iter().zip(&whole.parts.kinds) {
-        let mesh = match kind {
-            PartKind::Skin => 0,
-            PartKind::Eyeball(Side::Left) => 1,
-            PartKind::Eyeball(Side::Right) => 2,
-            PartKind::UpperTooth => 3,
-            PartKind::LowerTooth => 4,
-            PartKind::GumsAndTongue => 5,
-            PartKind::LidPart => 6,
-            _ => 7,
-        };
-        for &t in &c.triangles {
-            if let Some(slot) = triangle_mesh.get_mut(t as usize) {
-                *slot = mesh;
+/// `facebem pose` of a head read as `whole` from `path`: the whole head posed (every part) by
+/// `preset` — an ARKit or VRM name as the head's export makes it (gaze and `tongueOut`
+/// included), or a facebem preset — and the sliders `sets` on top, the lids kept on the
+/// eyeballs; written in the OBJ's own layout (an OBJ head) or as a plain OBJ.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn pose_head(
+    path: &Path,
+    output: &Path,
+    whole: WholeFile,
+    preset: Option<&str>,
+    sets: &[(String, f64)],
+    params: &facebem::PipelineParams,
+    solver: &SolverArgs,
+    force: bool,
+) -> Result<()> {
+    use facebem::expressions::{arkit, presets, vrm};
+    let mut inputs: Vec<PathBuf> = vec![path.to_path_buf()];
+    inputs.extend(face_prep::input::files_read_by(path));
+    let inputs: Vec<&Path> = inputs.iter().map(PathBuf::as_path).collect();
+    facebem::check_output(output, &inputs, &["obj"], "a pose (OBJ)")?;
+    // A standard name as the standard spells it (the head makes all of them).
+    let standard = preset.and_then(|name| {
+        (arkit::NAMES.iter().chain(vrm::NAMES.iter()))
+            .find(|n| n.eq_ignore_ascii_case(name.trim()))
+            .copied()
+    });
+    if let Some(name) = preset
+        && presets::find(name).is_none()
+        && standard.is_none()
+    {
+        bail!(
+            "unknown preset {name:?} (known: {}, or an ARKit or VRM 1.0 name, see --help)",
+            presets::names().join(", ")
+        );
+    }
+    let (model, head) = rig_head(path, &whole, params, solver, force)?;
+    let basis = &head.basis;
+    let mut sliders = vec![0.0; basis.muscle_ids.len()];
+    for (id, value) in sets {
+        let k = basis
+            .muscle_index(id)
+            .ok_or_else(|| anyhow::anyhow!("unknown muscle {id:?} (`facebem info` lists them)"))?;
+        sliders[k] = *value;
+    }
+    let mut field: Vec<glam::DVec3> = match (preset.and_then(presets::find), standard) {
+        // A facebem preset first, as for a face.
+        (Some(p), _) => {
+            for (s, v) in sliders.iter_mut().zip(p.sliders_for(&basis.muscle_ids)) {
+                if *s == 0.0 {
+                    *s = v;
+                }
             }
+            vec![glam::DVec3::ZERO; basis.neutral.len()]
         }
+        (None, Some(name)) => {
+            let names = model
+                .gltf_params(&facebem::export::GltfParams::default())
+                .names;
+            head.named_fields_for(names)
+                .into_iter()
+                .find(|(n, _)| n == name)
+                .map(|(_, f)| f)
+                .ok_or_else(|| anyhow::anyhow!("{name}: this head cannot make it"))?
+        }
+        (None, None) => vec![glam::DVec3::ZERO; basis.neutral.len()],
+    };
+    let posed_by_sliders = basis.pose(&sliders)?;
+    for ((d, p), n) in field.iter_mut().zip(&posed_by_sliders).zip(&basis.neutral) {
+        *d += *p - *n;
     }
-    facebem::export::gltf::MeshSplit {
-        names: NAMES.iter().map(|n| n.to_string()).collect(),
-        triangle_mesh,
-    }
+    head.contact.apply(&basis.neutral, &mut field);
+    let posed: Vec<glam::DVec3> = (basis.neutral.iter().zip(&field))
+        .map(|(n, d)| *n + *d)
+        .collect();
+    let text = if facebem::export::head::is_obj(path) {
+        let limits = face_prep::InputLimits::default();
+        let bytes = face_prep::limits::read_input_file(path, &limits)?;
+        let template = String::from_utf8_lossy(&bytes);
+        let identity: Vec<Option<u32>> = (0..posed.len() as u32).map(Some).collect();
+        facebem::export::obj::pose_from_template(&template, &identity, &posed)?
+    } else {
+        facebem::export::obj::plain_obj(&posed, &basis.triangles)?
+    };
+    facebem::write_atomic(output, text.as_bytes())?;
+    outln!(
+        "{}: posed all {} vertices of the head",
+        output.display(),
+        posed.len()
+    );
+    Ok(())
 }

@@ -7,7 +7,6 @@ use facebem::expressions::{self, NameSet, presets};
 use facebem::input::Opened;
 
 use crate::args::SolverArgs;
-use crate::open;
 use crate::rig::{check_trust, model_from_opened, pipeline_params};
 
 fn parse_set(s: &str) -> Result<(String, f64)> {
@@ -35,6 +34,20 @@ pub(crate) fn pose(
     let params = pipeline_params(solver)?;
     facebem::check_output(output, &[rig], &["obj"], "a pose (OBJ)")?;
     let parsed: Vec<(String, f64)> = sets.iter().map(|s| parse_set(s)).collect::<Result<_>>()?;
+    // A whole head: posed whole (its own standard names included).
+    let opened = match crate::open_face(rig) {
+        Ok(opened) => opened,
+        Err(e) => {
+            if matches!(e, facebem::input::OpenError::Face { .. })
+                && let Some(Ok(whole)) = facebem::input::heads::WholeFile::examine(rig)
+            {
+                return crate::head::pose_head(
+                    rig, output, whole, preset, &parsed, &params, solver, force,
+                );
+            }
+            return Err(crate::rig::whole_file_parts(rig, e, false));
+        }
+    };
     if let Some(name) = preset
         && presets::find(name).is_none()
         && expressions::find(name).is_none()
@@ -47,7 +60,6 @@ pub(crate) fn pose(
             presets::names().join(", ")
         );
     }
-    let opened = open(rig)?;
     // Unknown muscle names are found before a face mesh's rig is computed.
     let known: Vec<String> = match &opened {
         Opened::Model(model) => model.muscle_ids().to_vec(),

@@ -514,3 +514,45 @@ fn normals_follow_the_surface(output: &Path, old: usize, names: &[Value]) {
         "the most a normal turns in jawOpen: {turned}"
     );
 }
+
+/// A `.gltf` head whose buffer is a separate file (item 1: glTF as well as GLB) comes back as
+/// that file packed into one GLB, everything kept and the targets added; an output named like
+/// its buffer is refused before anything is written.
+#[test]
+fn a_gltf_head_with_a_separate_buffer_comes_back_as_one_glb() {
+    let dir = tempfile::tempdir().unwrap();
+    let glb = build(false);
+    let (json, bin) = face_prep::gltf_read::split_glb(&glb).unwrap();
+    let before: Value = serde_json::from_slice(json).unwrap();
+    let bin = bin.unwrap().to_vec();
+    let mut root = before.clone();
+    root["buffers"][0]["uri"] = Value::from("head.bin");
+    let input = dir.path().join("head.gltf");
+    std::fs::write(&input, serde_json::to_vec(&root).unwrap()).unwrap();
+    std::fs::write(dir.path().join("head.bin"), &bin).unwrap();
+    let export = |out: &Path| {
+        Command::new(env!("CARGO_BIN_EXE_facebem"))
+            .args(["export"])
+            .arg(&input)
+            .arg("--gltf")
+            .arg(out)
+            .env("XDG_CACHE_HOME", dir.path())
+            .output()
+            .unwrap()
+    };
+    let refused = export(&dir.path().join("head.bin"));
+    assert!(!refused.status.success());
+    assert_eq!(std::fs::read(dir.path().join("head.bin")).unwrap(), bin);
+    let output = dir.path().join("out.glb");
+    let run = export(&output);
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    valid(&output, "out.glb");
+    let written = std::fs::read(&output).unwrap();
+    let (j, b) = face_prep::gltf_read::split_glb(&written).unwrap();
+    let after: Value = serde_json::from_slice(j).unwrap();
+    kept(&before, &bin, &after, b.unwrap());
+}

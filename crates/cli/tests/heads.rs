@@ -1,7 +1,7 @@
 //! A whole head (issue 32): `facebem info` lists the parts it finds in ICT-FaceKit's generic
 //! head (`assets/heads/`); `facebem export` writes it back with the morph targets on every part
-//! (its front face rigged, the rig carried to the rest); the other commands refuse it with one
-//! line that says why, writing nothing.
+//! (its front face rigged, the rig carried to the rest); `pose` poses it whole; `rig` refuses it
+//! with one line that says why, writing nothing.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -270,4 +270,87 @@ fn far_from_features(p: [f64; 3]) -> bool {
         ((p[0] - c[0]).powi(2) + (p[1] - c[1]).powi(2) + (p[2] - c[2]).powi(2)).sqrt()
     };
     d([0.0, 3.6, 8.0]) > 5.0 && d([0.0, -3.1, 9.6]) > 5.0
+}
+
+/// The `v` lines of an OBJ text, as points.
+fn obj_points(text: &str) -> Vec<[f64; 3]> {
+    text.lines()
+        .filter(|l| l.starts_with("v "))
+        .map(|l| {
+            let p: Vec<f64> = l
+                .split_whitespace()
+                .skip(1)
+                .map(|w| w.parse().unwrap())
+                .collect();
+            [p[0], p[1], p[2]]
+        })
+        .collect()
+}
+
+/// `facebem pose` of a head poses every part, in the user's own OBJ: only `v` lines change.
+/// The head's own targets are names like any other (`eyeLookUpLeft` turns the left eyeball),
+/// sliders go on top of a name (jawOpen plus the left zygomaticus), and an unknown name is one
+/// line with nothing written.
+#[test]
+fn a_head_poses_whole_in_its_own_layout() {
+    let out = tempfile::tempdir().unwrap();
+    let head = head();
+    let input = std::fs::read_to_string(&head).unwrap();
+    let rest = obj_points(&input);
+    let pose = |name: &str, extra: &[&str]| {
+        let file = out.path().join(format!("{name}.obj"));
+        let mut args = vec!["pose", head.to_str().unwrap(), "--preset", name];
+        args.extend(extra);
+        args.extend(["-o", file.to_str().unwrap()]);
+        let run = facebem(&args, out.path());
+        (run, file)
+    };
+    let moved = |posed: &[[f64; 3]], range: std::ops::RangeInclusive<usize>| {
+        range
+            .map(|v| {
+                let d: f64 = (0..3).map(|k| (posed[v][k] - rest[v][k]).powi(2)).sum();
+                d.sqrt()
+            })
+            .fold(0.0, f64::max)
+    };
+    let (run, file) = pose("eyeLookUpLeft", &[]);
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let text = std::fs::read_to_string(&file).unwrap();
+    let other = |t: &str| -> Vec<String> {
+        t.lines()
+            .filter(|l| !l.starts_with("v "))
+            .map(str::to_owned)
+            .collect()
+    };
+    assert_eq!(other(&text), other(&input), "only the v lines change");
+    let up = obj_points(&text);
+    assert_eq!(up.len(), rest.len());
+    // Left eyeball first in ICT's order (21 451–23 020); cm.
+    assert!(moved(&up, 21_451..=23_020) > 0.2, "the left eyeball turns");
+    assert!(moved(&up, 23_021..=24_590) < 1e-9, "the right one does not");
+    assert!(moved(&up, LOWER_TEETH) < 1e-9);
+
+    let (run, file) = pose("jawOpen", &["--set", "zygomaticus_major_l=-1"]);
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let open = obj_points(&std::fs::read_to_string(&file).unwrap());
+    assert!(
+        moved(&open, LOWER_TEETH) > 0.5,
+        "the lower teeth go down with the jaw"
+    );
+    assert!(moved(&open, UPPER_TEETH) < 1e-9);
+
+    let (run, file) = pose("noSuchFace", &[]);
+    assert_eq!(run.status.code(), Some(1));
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    assert!(stderr.contains("unknown preset"), "{stderr}");
+    assert!(!file.exists());
 }

@@ -14,6 +14,7 @@ use facebem::{FaceModel, PipelineParams};
 
 use crate::camera::OrbitCamera;
 pub use crate::export::ExportKind;
+use crate::head::HeadSource;
 use crate::job::Job;
 use crate::overlay::{OverlayOptions, RigGeometry};
 use crate::picking::TriangleHit;
@@ -76,6 +77,15 @@ struct Face {
     /// The solved model, once available.
     model: Option<Arc<FaceModel>>,
     rig_geometry: Option<Arc<RigGeometry>>,
+    /// A whole head: its parts and front face, and the rig carried to it once computed.
+    head: Option<HeadView>,
+}
+
+/// A head shown whole ([`crate::head`]).
+#[derive(Clone, Debug)]
+struct HeadView {
+    source: Arc<HeadSource>,
+    basis: Option<Arc<facebem::transfer::head::HeadBasis>>,
 }
 
 /// A status line shown under the toolbar.
@@ -98,8 +108,16 @@ pub struct Selection {
     pub muscles: Vec<String>,
 }
 
+/// A computed rig: the face's model, where it came from, and for a head its fields on every
+/// part.
+type RigOutcome = (
+    FaceModel,
+    CacheStatus,
+    Option<facebem::transfer::head::HeadBasis>,
+);
+
 struct RigJob {
-    job: Job<(FaceModel, CacheStatus)>,
+    job: Job<RigOutcome>,
     control: Control,
     topology_id: u64,
     /// When the job started (elapsed time and estimate in the status bar).
@@ -238,7 +256,7 @@ impl ViewerApp {
 
     /// Displays `basis` without a rig (sliders reset to 0, camera framed on it).
     pub fn set_face(&mut self, name: impl Into<String>, basis: MuscleBasis) {
-        self.install_face(name.into(), basis, None, None, true);
+        self.install_face(name.into(), basis, None, None, true, None);
     }
 
     /// Displays `basis` (a face read from `source`: its mesh and OBJ text) without a rig, drawn
@@ -259,6 +277,7 @@ impl ViewerApp {
             Some(Arc::new((mesh, Some(text)))),
             None,
             true,
+            None,
         );
     }
 
@@ -269,12 +288,22 @@ impl ViewerApp {
         source: Option<Arc<(FaceMesh, Option<String>)>>,
         model: Option<Arc<FaceModel>>,
         reframe: bool,
+        head: Option<HeadView>,
     ) {
         let edges = edge_indices(&basis.triangles);
-        let text_source = source
-            .as_deref()
-            .and_then(|(mesh, text)| Some((mesh, text.as_deref()?)));
-        let surface = Surface::new(&basis, text_source, &self.looks, SKIN);
+        let surface = match &head {
+            Some(head) => {
+                let (surface, looks) = head.source.surface(&basis, SKIN);
+                self.looks = Arc::new(looks);
+                surface
+            }
+            None => {
+                let text_source = source
+                    .as_deref()
+                    .and_then(|(mesh, text)| Some((mesh, text.as_deref()?)));
+                Surface::new(&basis, text_source, &self.looks, SKIN)
+            }
+        };
         let mut neutral = PosedMesh::default();
         let mut neutral_surface = Vec::new();
         if neutral
@@ -308,6 +337,7 @@ impl ViewerApp {
             source,
             model,
             rig_geometry,
+            head,
         });
         self.next_topology_id += 1;
         self.surface_key = None;
@@ -342,6 +372,33 @@ impl ViewerApp {
             Some(source),
             Some(Arc::new(model)),
             !same_mesh,
+            None,
+        );
+    }
+
+    /// Installs the rig of the displayed head: `model` of its front face, `head` its fields on
+    /// every part (the sliders move the whole head; [`crate::head::display_basis`]).
+    pub fn set_head_model(
+        &mut self,
+        name: impl Into<String>,
+        model: FaceModel,
+        head: facebem::transfer::head::HeadBasis,
+    ) {
+        let Some(source) = self.face.as_ref().and_then(|f| f.head.clone()) else {
+            return self.error("No head is displayed to carry this rig to".to_owned());
+        };
+        let basis = crate::head::display_basis(&head);
+        let view = HeadView {
+            source: source.source,
+            basis: Some(Arc::new(head)),
+        };
+        self.install_face(
+            name.into(),
+            basis,
+            None,
+            Some(Arc::new(model)),
+            false,
+            Some(view),
         );
     }
 

@@ -51,6 +51,18 @@ pub enum ExportError {
     /// Writing the muscle file failed.
     #[error(transparent)]
     MuscleFile(#[from] face_prep::MuscleFileError),
+    /// Building a head's glTF failed.
+    #[error(transparent)]
+    Head(#[from] facebem::export::head::HeadGltfError),
+}
+
+/// A head's export: the file it was read from and its rig carried to every part.
+#[derive(Clone, Debug)]
+pub struct HeadExport {
+    /// The head as read.
+    pub source: Arc<crate::head::HeadSource>,
+    /// Its fields on every part.
+    pub basis: Arc<facebem::transfer::head::HeadBasis>,
 }
 
 /// Everything an export needs, moved into its background job.
@@ -66,6 +78,8 @@ pub struct ExportRequest {
     pub model: Option<Arc<FaceModel>>,
     /// Current slider values.
     pub sliders: Vec<f64>,
+    /// For a head: its file and rig (the glTF is the user's own file back with the targets).
+    pub head: Option<HeadExport>,
 }
 
 /// The first of `dir/<stem><ext>`, `dir/<stem> (2)<ext>`, `dir/<stem> (3)<ext>`, … that does not
@@ -97,16 +111,47 @@ pub fn write_export(kind: ExportKind, request: &ExportRequest) -> Result<PathBuf
         ExportKind::ObjPose => {
             let path = path_for("_pose.obj");
             let posed = request.basis.pose(&request.sliders)?;
-            let text = match request.model.as_deref() {
-                Some(
-                    model @ FaceModel {
-                        obj_source: Some(obj),
-                        ..
-                    },
-                ) => model.pose_obj_text(obj, &posed)?,
-                _ => facebem::export::obj::plain_obj(&posed, &request.basis.triangles)?,
+            let head_text = request.head.as_ref().map(|h| h.source.obj_text.as_deref());
+            let text = match (head_text, request.model.as_deref()) {
+                // An OBJ head in its own layout: its scene has one vertex per `v` line.
+                (Some(Some(obj)), _) => {
+                    let identity: Vec<Option<u32>> = (0..posed.len() as u32).map(Some).collect();
+                    facebem::export::obj::pose_from_template(obj, &identity, &posed)?
+                }
+                (Some(None), _) => {
+                    facebem::export::obj::plain_obj(&posed, &request.basis.triangles)?
+                }
+                (None, model) => match model {
+                    Some(
+                        model @ FaceModel {
+                            obj_source: Some(obj),
+                            ..
+                        },
+                    ) => model.pose_obj_text(obj, &posed)?,
+                    _ => facebem::export::obj::plain_obj(&posed, &request.basis.triangles)?,
+                },
             };
             facebem::write_atomic(&path, text.as_bytes())?;
+            path
+        }
+        ExportKind::Gltf if request.head.is_some() => {
+            let (Some(head), Some(model)) = (&request.head, request.model.as_deref()) else {
+                return Err(ExportError::NoRig);
+            };
+            // The user's own file back: a VRM stays a VRM, anything else becomes a GLB.
+            let is_vrm =
+                (head.source.path.extension()).is_some_and(|e| e.eq_ignore_ascii_case("vrm"));
+            let path = path_for(if is_vrm { ".vrm" } else { ".glb" });
+            let params = facebem::export::GltfParams::default();
+            let built = facebem::export::head::head_gltf(
+                &head.source.path,
+                &path,
+                &head.source.whole,
+                model,
+                &head.basis,
+                &params,
+            )?;
+            facebem::write_atomic(&path, &built.bytes)?;
             path
         }
         ExportKind::Gltf => {

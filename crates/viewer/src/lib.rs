@@ -17,6 +17,7 @@
 pub mod app;
 pub mod camera;
 pub mod export;
+pub mod head;
 pub mod job;
 pub mod muscle_edit;
 pub mod overlay;

@@ -42,7 +42,32 @@ pub struct PosedMesh {
 impl PosedMesh {
     /// Re-blends the vertices for `sliders` (one per muscle, each in −1…1).
     pub fn update(&mut self, basis: &MuscleBasis, sliders: &[f64]) -> Result<(), PoseError> {
+        self.update_with_contact(basis, sliders, None)
+    }
+
+    /// [`PosedMesh::update`], then, for a head, the lids kept off the eyeballs in the mix
+    /// ([`facebem::transfer::eye_contact::EyeContact::apply`] on the mixed displacement, as
+    /// the exported targets are one by one).
+    pub fn update_with_contact(
+        &mut self,
+        basis: &MuscleBasis,
+        sliders: &[f64],
+        contact: Option<&facebem::transfer::eye_contact::EyeContact>,
+    ) -> Result<(), PoseError> {
         basis.pose_into(sliders, &mut self.scratch)?;
+        if let Some(contact) = contact
+            && self.scratch.len() == basis.neutral.len()
+            && sliders.iter().any(|s| *s != 0.0)
+        {
+            let mut field: Vec<DVec3> = (self.scratch.iter().zip(&basis.neutral))
+                .map(|(p, n)| *p - *n)
+                .collect();
+            if contact.apply(&basis.neutral, &mut field) > 0 {
+                for ((p, n), d) in self.scratch.iter_mut().zip(&basis.neutral).zip(&field) {
+                    *p = *n + *d;
+                }
+            }
+        }
         self.normals.clear();
         self.normals.resize(self.scratch.len(), DVec3::ZERO);
         for t in &basis.triangles {

@@ -231,9 +231,22 @@ impl Surface {
         looks: &Looks,
         skin: [f32; 4],
     ) -> Surface {
-        let n = basis.neutral.len();
         let layout = source
             .and_then(|(mesh, text)| ExportLayout::from_obj_for(text, mesh).ok())
+            .unwrap_or_else(|| ExportLayout::welded(&basis.neutral, &basis.triangles));
+        Surface::with_layout(basis, layout, looks, skin)
+    }
+
+    /// The surface of `basis` drawn in `layout` (an OBJ's layout whose vertices index
+    /// `basis`; its welded vertices if they do not) with `looks`.
+    pub fn with_layout(
+        basis: &MuscleBasis,
+        layout: ExportLayout,
+        looks: &Looks,
+        skin: [f32; 4],
+    ) -> Surface {
+        let n = basis.neutral.len();
+        let layout = Some(layout)
             .filter(|l| l.welded.iter().flatten().all(|&w| (w as usize) < n))
             .unwrap_or_else(|| ExportLayout::welded(&basis.neutral, &basis.triangles));
         let uvs = layout

@@ -93,6 +93,14 @@ pub fn browser_entries(tab: BrowserTab, query: &str, control_ids: &[String]) -> 
         _ => &expressions::vrm::NAMES,
     };
     for &name in standard.iter().filter(|n| matches(n)) {
+        if own_target(name, control_ids).is_some() {
+            // A head's own target (gaze, tongue): a slider of its own.
+            out.push(BrowserEntry {
+                name,
+                unavailable: None,
+            });
+            continue;
+        }
         let unavailable = match (expressions::not_modelled(name), expressions::find(name)) {
             (Some((_, why)), _) => Some(format!("not modelled: {why}")),
             (None, Some(e)) => match e.resolve(control_ids) {
@@ -120,7 +128,11 @@ impl ViewerApp {
     pub fn set_expression_weight(&mut self, name: &str, weight: f64) -> bool {
         let Some(face) = &self.face else { return false };
         let ids = &face.basis.muscle_ids;
-        let (sliders, name) = if let Some(p) = presets::find(name) {
+        let (sliders, name) = if let Some((k, name)) = own_target(name, ids) {
+            let mut unit = vec![0.0; ids.len()];
+            unit[k] = 1.0;
+            (unit, name)
+        } else if let Some(p) = presets::find(name) {
             (p.sliders_for(ids), p.name)
         } else if let Some(e) = expressions::find(name)
             && let Some(r) = e.resolve(ids)
@@ -142,6 +154,10 @@ impl ViewerApp {
         for &(n, w) in &self.mix {
             let s = if n == name {
                 sliders.clone()
+            } else if let Some((k, _)) = own_target(n, ids) {
+                (0..ids.len())
+                    .map(|j| if j == k { 1.0 } else { 0.0 })
+                    .collect()
             } else if let Some(p) = presets::find(n) {
                 p.sliders_for(ids)
             } else {
@@ -267,6 +283,24 @@ impl ViewerApp {
             self.repose();
         }
     }
+}
+
+/// A standard name that is one of the rig's own sliders (a head's gaze and tongue targets,
+/// [`crate::head::display_basis`]): its slider and the name as the standard spells it.
+///
+/// ```
+/// use viewer::app::browser::own_target;
+/// let ids: Vec<String> = ["jaw_open", "eyeLookUpLeft"].map(String::from).into();
+/// assert_eq!(own_target("eyeLookUpLeft", &ids), Some((1, "eyeLookUpLeft")));
+/// assert_eq!(own_target("eyeLookUpRight", &ids), None);
+/// assert_eq!(own_target("jaw_open", &ids), None);
+/// ```
+pub fn own_target(name: &str, control_ids: &[String]) -> Option<(usize, &'static str)> {
+    let name = (expressions::arkit::NAMES.iter())
+        .chain(expressions::vrm::NAMES.iter())
+        .find(|n| **n == name)?;
+    let k = control_ids.iter().position(|c| c == name)?;
+    Some((k, name))
 }
 
 /// Height of the browser's list, in points (about ten rows).

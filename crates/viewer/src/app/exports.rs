@@ -2,6 +2,7 @@
 //! and writing them in the background.
 
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 use eframe::egui;
 
@@ -56,6 +57,12 @@ impl ViewerApp {
         let basis = face.basis.clone();
         let model = face.model.clone();
         let sliders = self.sliders.clone();
+        let head = face.head.as_ref().and_then(|h| {
+            Some(crate::export::HeadExport {
+                source: Arc::clone(&h.source),
+                basis: Arc::clone(h.basis.as_ref()?),
+            })
+        });
         let job = Job::spawn(kind.label(), Some(ctx.clone()), move |ctl| {
             ctl.report("writing", 0.0);
             let request = ExportRequest {
@@ -64,6 +71,7 @@ impl ViewerApp {
                 basis,
                 model,
                 sliders,
+                head,
             };
             let path = write_export(kind, &request).map_err(|e| e.to_string())?;
             Ok(format!("Exported {}", path.display()))

@@ -11,6 +11,7 @@ use facebem::PipelineParams;
 use facebem::input::{CacheStatus, Opened};
 
 use super::ViewerApp;
+use crate::head::HeadSource;
 use crate::job::Job;
 use crate::source;
 
@@ -69,7 +70,7 @@ impl ViewerApp {
             match result {
                 // A rig for a face that was replaced meanwhile is dropped.
                 Ok(_) if !same_face => {}
-                Ok((model, status)) => {
+                Ok((model, status, head)) => {
                     let name = self
                         .face
                         .as_ref()
@@ -103,7 +104,17 @@ impl ViewerApp {
                     };
                     let warnings = model.report.warnings();
                     let distrust = facebem::model::distrust(&model);
-                    self.set_model(name, model);
+                    let text = match &head {
+                        Some(h) => format!(
+                            "{text}; carried to all {} vertices of the head",
+                            h.basis.neutral.len()
+                        ),
+                        None => text,
+                    };
+                    match head {
+                        Some(head) => self.set_head_model(name, model, head),
+                        None => self.set_model(name, model),
+                    }
                     if !distrust.is_empty() {
                         // In red: the command line refuses to write this rig without --force.
                         let mut message = format!("{text}. {}", untrustworthy(&distrust));
@@ -136,7 +147,22 @@ impl ViewerApp {
         let looks_warning = (self.looks.warnings.first())
             .map(|w| format!("Opened {name}, drawn without part of its look: {w}"));
         match opened {
-            Opened::Model(model) => {
+            Contents::Head(head) => {
+                self.info(format!(
+                    "Opened {name}: a head ({}); rigging its front face ({} triangles)…",
+                    head.whole.summary(),
+                    head.mesh.triangles.len()
+                ));
+                let basis = head.preview_basis();
+                self.params = PipelineParams::default();
+                let head = super::HeadView {
+                    source: Arc::new(*head),
+                    basis: None,
+                };
+                self.install_face(name, basis, None, None, true, Some(head));
+                self.rebuild_rig(ctx);
+            }
+            Contents::File(Opened::Model(model)) => {
                 let text = format!(
                     "Opened the saved rig {name} ({} triangles, {} muscles)",
                     model.basis.triangles.len(),
@@ -152,7 +178,7 @@ impl ViewerApp {
                 self.rigging = None;
                 self.set_model(name, *model);
             }
-            Opened::Face { mesh, obj_source } => {
+            Contents::File(Opened::Face { mesh, obj_source }) => {
                 self.info(format!(
                     "Opened {name} ({} triangles); computing its muscle rig…",
                     mesh.triangles.len()
@@ -160,7 +186,7 @@ impl ViewerApp {
                 let basis = source::preview_basis(&mesh);
                 let source = Arc::new((mesh, obj_source));
                 self.params = PipelineParams::default();
-                self.install_face(name, basis, Some(source), None, true);
+                self.install_face(name, basis, Some(source), None, true, None);
                 self.rebuild_rig(ctx);
             }
         }
@@ -202,23 +228,38 @@ impl ViewerApp {
     }
 }
 
+/// What a file held: a face or a saved rig ([`Opened`]), or a whole head.
+pub(crate) enum Contents {
+    /// A face or a saved rig.
+    File(Opened),
+    /// A head or an avatar, read whole.
+    Head(Box<HeadSource>),
+}
+
 /// A file read by [`open_file`]: its name, what it holds and its materials.
 pub(crate) struct OpenedFile {
     name: String,
-    opened: Opened,
+    opened: Contents,
     looks: crate::surface::Looks,
 }
 
-/// Reads `path` (face or saved rig) and the materials it names.
+/// Reads `path` (face, head or saved rig) and the materials it names.
 pub(crate) fn open_file(path: &Path) -> Result<OpenedFile, String> {
-    let opened = facebem::input::open(path).map_err(|e| {
-        // A head or an avatar: say what it holds and why it is not rigged.
-        match (&e, facebem::input::heads::WholeFile::examine(path)) {
-            (facebem::input::OpenError::Face { .. }, Some(Ok(whole))) => whole.refusal(path),
-            (facebem::input::OpenError::Face { .. }, Some(Err(refusal))) => refusal,
-            _ => e.to_string(),
+    let opened = match facebem::input::open(path) {
+        Ok(opened) => opened,
+        Err(e) => {
+            // A head or an avatar is read whole; anything else says what it holds.
+            return match (&e, facebem::input::heads::WholeFile::examine(path)) {
+                (facebem::input::OpenError::Face { .. }, Some(Ok(whole))) => Ok(OpenedFile {
+                    name: file_name(path),
+                    opened: Contents::Head(Box::new(HeadSource::new(path, whole)?)),
+                    looks: crate::surface::Looks::default(),
+                }),
+                (facebem::input::OpenError::Face { .. }, Some(Err(refusal))) => Err(refusal),
+                _ => Err(e.to_string()),
+            };
         }
-    })?;
+    };
     let text = match &opened {
         Opened::Face { obj_source, .. } => obj_source.as_deref(),
         Opened::Model(m) => m.obj_source.as_deref(),
@@ -231,7 +272,7 @@ pub(crate) fn open_file(path: &Path) -> Result<OpenedFile, String> {
     }
     Ok(OpenedFile {
         name: file_name(path),
-        opened,
+        opened: Contents::File(opened),
         looks,
     })
 }
@@ -242,7 +283,7 @@ pub(super) fn default_face_opened() -> Result<OpenedFile, String> {
     let obj_source = Some(facebem::input::DEFAULT_FACE_OBJ.to_owned());
     Ok(OpenedFile {
         name: facebem::input::DEFAULT_FACE_NAME.to_owned(),
-        opened: Opened::Face { mesh, obj_source },
+        opened: Contents::File(Opened::Face { mesh, obj_source }),
         looks: crate::surface::Looks::default(),
     })
 }

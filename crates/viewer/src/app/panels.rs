@@ -275,7 +275,8 @@ impl ViewerApp {
         );
         rig.offset = offset;
         rig.thickness = thickness;
-        let has_source = self.face.as_ref().is_some_and(|f| f.source.is_some());
+        let has_source =
+            (self.face.as_ref()).is_some_and(|f| f.source.is_some() || f.head.is_some());
         ui.horizontal(|ui| {
             if ui
                 .add_enabled(has_source, egui::Button::new("Rebuild rig"))

@@ -69,14 +69,15 @@ impl ViewerApp {
                 // Overlays follow the pose: every shell vertex moves by its own response
                 // (the simulated surface's, also on a reduced copy), in the user's frame.
                 let response = &model.shell_vertex_response;
-                let posed_geo = (response.len() == self.sliders.len()
+                // A head's sliders go on past the controls (its gaze and tongue targets).
+                let posed_geo = (response.len() <= self.sliders.len()
                     && response.iter().all(|r| r.len() == geo.vertices.len()))
                 .then(|| {
                     let linear = geo.input_from_canonical.matrix3;
                     let mut g = (**geo).clone();
-                    for (k, &s) in self.sliders.iter().enumerate() {
+                    for (&s, field) in self.sliders.iter().zip(response) {
                         if s != 0.0 {
-                            for (p, u) in g.vertices.iter_mut().zip(&response[k]) {
+                            for (p, u) in g.vertices.iter_mut().zip(field) {
                                 *p += linear * (s * *u);
                             }
                         }
@@ -128,7 +129,11 @@ impl ViewerApp {
 
     pub(super) fn repose(&mut self) {
         let Some(face) = &self.face else { return };
-        if let Err(e) = self.posed.update(&face.basis, &self.sliders) {
+        // A head's lids stay on its eyeballs in any mix of sliders.
+        let contact = (face.head.as_ref())
+            .and_then(|h| h.basis.as_ref())
+            .map(|b| &b.contact);
+        if let Err(e) = (self.posed).update_with_contact(&face.basis, &self.sliders, contact) {
             let text = format!("Cannot pose {}: {e}", face.name);
             self.error(text);
         }

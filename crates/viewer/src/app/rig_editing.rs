@@ -33,10 +33,12 @@ impl ViewerApp {
     /// for later rebuilds (offset, thickness).
     pub fn rebuild_rig_with_boxes(&mut self, ctx: &egui::Context, boxes: Option<FeatureBoxes>) {
         let Some(face) = &self.face else { return };
-        let Some(source) = face.source.clone() else {
+        let head = face.head.as_ref().map(|h| Arc::clone(&h.source));
+        let source = face.source.clone();
+        if source.is_none() && head.is_none() {
             self.error("This face has no source mesh to build a rig from".to_owned());
             return;
-        };
+        }
         if let Some(old) = self.rigging.take() {
             old.control.cancel();
             old.job.control().cancel();
@@ -64,9 +66,16 @@ impl ViewerApp {
                 // Not fatal: the model is still computed; saving it will report the problem.
                 ctl.report(&format!("cache folder: {e}"), 0.0);
             }
-            let (mesh, obj) = &*source;
+            if let Some(head) = head {
+                let rigged = head.rig(&params, &dir, &control)?;
+                return Ok((rigged.model, rigged.status, Some(rigged.head)));
+            }
+            let Some((mesh, obj)) = source.as_deref() else {
+                return Err("no source mesh".to_owned());
+            };
             let cache_path = source::cache_file_for(&dir, mesh, &params);
             facebem::input::load_or_build(mesh, obj.clone(), &params, &cache_path, &control)
+                .map(|(model, status)| (model, status, None))
                 .map_err(|e| e.to_string())
         });
         self.rigging = Some(RigJob {

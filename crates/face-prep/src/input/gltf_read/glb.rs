@@ -3,8 +3,8 @@
 use crate::error::GltfError;
 
 pub(super) const GLB_MAGIC: &[u8; 4] = b"glTF";
-const CHUNK_JSON: u32 = 0x4E4F_534A;
-const CHUNK_BIN: u32 = 0x004E_4942;
+pub(super) const CHUNK_JSON: u32 = 0x4E4F_534A;
+pub(super) const CHUNK_BIN: u32 = 0x004E_4942;
 
 fn le_u32(b: &[u8], at: usize) -> Option<u32> {
     let s = b.get(at..at.checked_add(4)?)?;

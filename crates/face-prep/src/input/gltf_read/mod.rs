@@ -26,6 +26,7 @@ mod external;
 mod glb;
 mod looks;
 mod meshes;
+mod pack;
 
 #[doc(inline)]
 pub use crate::error::GltfError;
@@ -36,3 +37,4 @@ pub use external::files_read_by;
 pub use glb::split_glb;
 pub use looks::{MaterialLook, material_looks};
 pub(crate) use meshes::{attribute, mesh_labels, primitives};
+pub use pack::pack_glb;
