@@ -99,6 +99,41 @@ fn a_whole_head_opens_rigs_and_moves_every_part() {
     the_lids_stay_on_the_eyes_in_a_mix(&mut harness, &basis, &rest);
     the_gltf_button_writes_the_head(&mut harness, exports.path());
     a_rebuild_carries_the_new_rig_to_the_head(&mut harness);
+    the_exported_glb_opens_as_a_head_too(&mut harness, exports.path());
+}
+
+/// The GLB the glTF button wrote (one mesh per part, UV seams as separate vertices) opens as a
+/// head too and is rigged and carried. Its own glTF export is refused in one line: the file
+/// already has targets of these names (its own shapes are never overwritten), nothing written.
+fn the_exported_glb_opens_as_a_head_too(harness: &mut App, exports: &Path) {
+    let glb = exports.join("ict_generic_head.glb");
+    let whole = facebem::input::heads::WholeFile::read(&glb).expect("a head");
+    common::open_via_path_field(harness, &glb);
+    common::wait_idle(harness);
+    let msg = harness.state().message().cloned().unwrap();
+    let n = whole.scene.positions.len();
+    assert!(
+        msg.text.contains(&format!("carried to all {n} vertices")),
+        "{}",
+        msg.text
+    );
+    assert_eq!(harness.state().basis().unwrap().neutral.len(), n);
+    if let Some(dir) = std::env::var_os("FACEBEM_PICTURES") {
+        let picture = harness.render().expect("wgpu render");
+        (picture.save(Path::new(&dir).join("viewer_glb_head.png"))).unwrap();
+    }
+    let ctx = harness.ctx.clone();
+    harness
+        .state_mut()
+        .export(&ctx, viewer::app::ExportKind::Gltf);
+    common::wait_idle(harness);
+    let msg = harness.state().message().cloned().unwrap();
+    assert!(
+        msg.is_error && msg.text.contains("already has a morph target named"),
+        "{}",
+        msg.text
+    );
+    assert!(!exports.join("ict_generic_head (2).glb").exists());
 }
 
 /// "Rebuild rig" with another shell offset rigs the front face again and carries it to the
