@@ -74,12 +74,13 @@ pub fn head_gltf(
         .map_err(|e| HeadGltfError::Read(e.to_string()))?;
     let plain = model.gltf_params(params);
     let named_fields = head.named_fields_for(plain.names);
+    // Where the file's own references (buffers, images, material libraries) are read.
+    let folder = match path.parent() {
+        Some(f) if !f.as_os_str().is_empty() => f,
+        _ => Path::new("."),
+    };
     if !is_obj(path) {
         // A .gltf with separate files comes back as one GLB.
-        let folder = match path.parent() {
-            Some(f) if !f.as_os_str().is_empty() => f,
-            _ => Path::new("."),
-        };
         let glb = face_prep::gltf_read::pack_glb(&bytes, folder, &limits)
             .map_err(|e| HeadGltfError::Read(e.to_string()))?;
         let params = GltfParams {
@@ -112,10 +113,6 @@ pub fn head_gltf(
         });
     }
     let text = String::from_utf8_lossy(&bytes).into_owned();
-    let folder = match path.parent() {
-        Some(f) if !f.as_os_str().is_empty() => f,
-        _ => Path::new("."),
-    };
     let materials = crate::export::material::ObjMaterials::load(&text, folder)?;
     let identity: Vec<Option<u32>> = (0..whole.scene.positions.len() as u32).map(Some).collect();
     let layout = ExportLayout::from_obj(&text, &identity)?;

@@ -24,6 +24,15 @@ fn head_path() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets/heads/ict_generic_head.obj")
 }
 
+/// Renders the viewer (wgpu on lavapipe) and saves the picture as `name` in
+/// `$FACEBEM_PICTURES`, when that is set (to look at).
+fn save_picture(harness: &mut App, name: &str) {
+    let picture = harness.render().expect("wgpu render");
+    if let Some(dir) = std::env::var_os("FACEBEM_PICTURES") {
+        picture.save(Path::new(&dir).join(name)).unwrap();
+    }
+}
+
 /// The largest motion (file units, cm) of the vertices `range` between two uploads.
 fn largest(
     a: &[viewer::posed_mesh::MeshVertex],
@@ -118,10 +127,7 @@ fn the_exported_glb_opens_as_a_head_too(harness: &mut App, exports: &Path) {
         msg.text
     );
     assert_eq!(harness.state().basis().unwrap().neutral.len(), n);
-    if let Some(dir) = std::env::var_os("FACEBEM_PICTURES") {
-        let picture = harness.render().expect("wgpu render");
-        (picture.save(Path::new(&dir).join("viewer_glb_head.png"))).unwrap();
-    }
+    save_picture(harness, "viewer_glb_head.png");
     let ctx = harness.ctx.clone();
     harness
         .state_mut()
@@ -186,12 +192,7 @@ fn the_jaw_moves_the_lower_teeth_only(harness: &mut App, basis: &MuscleBasis, re
         .map(|v| Vec3::from(rest[v].position).distance(Vec3::from(open[v].position)))
         .fold(0.0, f32::max);
     assert!(back < 0.1, "the back of the head moved {back} cm");
-    let picture = harness.render().expect("wgpu render");
-    if let Some(dir) = std::env::var_os("FACEBEM_PICTURES") {
-        picture
-            .save(Path::new(&dir).join("viewer_head_jaw_open.png"))
-            .unwrap();
-    }
+    save_picture(harness, "viewer_head_jaw_open.png");
 }
 
 /// eyeLookUpLeft, picked in the expression browser: the left eyeball turns (moves by
@@ -233,10 +234,7 @@ fn the_gaze_turns_one_eye(harness: &mut App, basis: &MuscleBasis, rest: &Vertice
     let centre = eyes.iter().copied().sum::<Vec3>() / eyes.len() as f32;
     *harness.state_mut().camera_mut() = viewer::camera::OrbitCamera::framing(centre, 5.0);
     harness.run();
-    let picture = harness.render().expect("wgpu render");
-    if let Some(dir) = std::env::var_os("FACEBEM_PICTURES") {
-        (picture.save(Path::new(&dir).join("viewer_head_look_up_left.png"))).unwrap();
-    }
+    save_picture(harness, "viewer_head_look_up_left.png");
 }
 
 fn the_lids_stay_on_the_eyes_in_a_mix(harness: &mut App, basis: &MuscleBasis, rest: &Vertices) {
@@ -262,10 +260,7 @@ fn the_lids_stay_on_the_eyes_in_a_mix(harness: &mut App, basis: &MuscleBasis, re
     }
     harness.run();
     let mixed = harness.state().uploaded_vertices().to_vec();
-    if let Some(dir) = std::env::var_os("FACEBEM_PICTURES") {
-        let picture = harness.render().expect("wgpu render");
-        (picture.save(Path::new(&dir).join("viewer_head_blink_squint.png"))).unwrap();
-    }
+    save_picture(harness, "viewer_head_blink_squint.png");
     let plain = basis.pose(harness.state().sliders()).unwrap();
     let at_rest = inside(&|v| Vec3::from(rest[v].position));
     let in_plain_sum = inside(&|v| plain[v].as_vec3());
