@@ -9,6 +9,53 @@ fn row<'a>(rows: &'a [Row], name: &str) -> &'a Row {
     rows.iter().find(|r| r.name == name).unwrap()
 }
 
+/// Issue 33's calibration on the narrow face (`src/expressions/arkit.rs`; the table:
+/// `cargo run --release -p facebem-tools --bin fit_recipes`): the fitted recipes bring the mean
+/// cosine of the 43 targets from 0.595 to 0.726, none is negative (the rolls were −0.52 and
+/// −0.24), the targets that matched already lose at most 0.02, and the ones the fit mended
+/// keep their gain.
+fn narrow_face_recipes_match_the_captures(rows: &[Row]) {
+    let narrow: Vec<(&str, f64)> = rows
+        .iter()
+        .filter_map(|r| r.narrow_face.map(|c| (r.name.as_str(), c)))
+        .collect();
+    assert_eq!(narrow.len(), 43);
+    let mean = narrow.iter().map(|(_, c)| c).sum::<f64>() / narrow.len() as f64;
+    assert!(mean >= 0.72, "mean cosine {mean}");
+    assert!(narrow.iter().all(|&(_, c)| c > 0.0), "{narrow:?}");
+    let at_least = |name: &str, bound: f64| {
+        let c = row(rows, name).narrow_face.unwrap();
+        assert!(c >= bound, "{name}: cosine {c} under {bound}");
+    };
+    // Matched before the fit (hand-made recipes: 0.86, 0.85, 0.91, 0.87, 0.94, 0.94), less 0.02.
+    for (stem, bound) in [
+        ("mouthSmile", 0.84),
+        ("mouthFrown", 0.83),
+        ("mouthStretch", 0.89),
+        ("eyeBlink", 0.85),
+        ("eyeWide", 0.92),
+    ] {
+        at_least(&format!("{stem}Left"), bound);
+        at_least(&format!("{stem}Right"), bound);
+    }
+    at_least("jawOpen", 0.92);
+    // Mended by the fit (before: 0.08, 0.10, 0.31, −0.24, −0.52, 0.52, 0.38, 0.67).
+    at_least("cheekPuff", 0.6);
+    for stem in [
+        "mouthPress",
+        "noseSneer",
+        "mouthDimple",
+        "eyeSquint",
+        "mouthUpperUp",
+    ] {
+        let bound = if stem == "mouthPress" { 0.5 } else { 0.55 };
+        at_least(&format!("{stem}Left"), bound);
+        at_least(&format!("{stem}Right"), bound);
+    }
+    at_least("mouthRollLower", 0.4);
+    at_least("mouthRollUpper", 0.55);
+}
+
 #[test]
 fn the_whole_head_moves_like_the_captures() {
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
@@ -25,9 +72,10 @@ fn the_whole_head_moves_like_the_captures() {
     }
     assert_eq!(
         rows.len(),
-        47,
+        51,
         "every ARKit name ICT captured (all but tongueOut, 4 halves summed)"
     );
+    narrow_face_recipes_match_the_captures(&rows);
     // The gaze: the lids follow as captured (cosine ≥ 0.7, the upper lid's largest motion
     // within 30 % of the captured one).
     for name in facebem::transfer::gaze::ARKIT_GAZE.map(|g| g.0) {
@@ -80,16 +128,33 @@ fn the_whole_head_moves_like_the_captures() {
             right.whole_head
         );
     }
-    // Not yet everywhere (issue 32's note): at most 6 targets lower on the whole head than on
-    // the narrow face by more than 0.05 (cheekPuff, mouthClose, mouthLowerDown,
-    // mouthRollLower, mouthShrugLower: the lower lip and the cheek's lining), none by more
-    // than 0.1.
+    // Not yet everywhere (issue 32's note): at most 7 targets lower on the whole head than on
+    // the narrow face by more than 0.05 (mouthClose, mouthLeft/Right, mouthLowerDown,
+    // the rolls: the lips' inside, scored on the head's mouth socket only), none by more than
+    // 0.1 but the rolls. The rolls' fitted recipes curl the lips on the face (narrow 0.42 /
+    // 0.60) more than the socket follows them (head 0.12 / 0.38; before the fit −0.30 / −0.57).
     let worse: Vec<(&str, f64)> = rows
         .iter()
         .filter_map(|r| r.narrow_face.map(|n| (r.name.as_str(), r.whole_head - n)))
         .filter(|&(_, d)| d < -0.05)
         .collect();
     eprintln!("lower by more than 0.05: {worse:?}");
-    assert!(worse.len() <= 6, "{worse:?}");
-    assert!(worse.iter().all(|&(_, d)| d > -0.1), "{worse:?}");
+    assert!(worse.len() <= 7, "{worse:?}");
+    let roll = |n: &str| n.starts_with("mouthRoll");
+    assert!(
+        worse.iter().all(|&(n, d)| d > -0.1 || roll(n) && d > -0.35),
+        "{worse:?}"
+    );
+    // What the fitted recipes mended holds on the whole head too (before: 0.00, 0.17, 0.34,
+    // −0.30, −0.57).
+    for (name, bound) in [
+        ("cheekPuff", 0.6),
+        ("mouthPressLeft", 0.45),
+        ("noseSneerLeft", 0.65),
+        ("mouthRollLower", 0.05),
+        ("mouthRollUpper", 0.3),
+    ] {
+        let head = row(&rows, name).whole_head;
+        assert!(head >= bound, "{name}: head cosine {head} under {bound}");
+    }
 }

@@ -9,8 +9,22 @@
 //! the nearest is used and the description says so. Unpaired controls (orbicularis oris,
 //! procerus, cheek puff) act on both sides, so e.g. `mouthPressLeft` differs from
 //! `mouthPressRight` only by its paired part.
+//!
+//! Calibration (issue 33): the weights of 31 of the 43 were fitted once, on the ICT narrow
+//! face, to ICT-FaceKit's captured shape of the same name by bounded linear least squares
+//! (each control contracting in [−1, 0]; a few named antagonists released up to +0.5; a
+//! `…Left` fitted to both sides' captures, its mirror being `…Right`; one weight per muscle
+//! pair for a target without a side) and are used unchanged on every face
+//! ([`Definition::Fitted`]; a rig without one of the fit's controls, such as the thesis
+//! model's ten muscles, gets the hand-made recipe kept beside it). The method, and why the
+//! other twelve keep their hand-made recipes (the jaw's four are kinematic, a blink must close
+//! the lid, mouthClose is a corrective over the open jaw, and the fitted brow lowerer, pucker
+//! and sideways mouth failed the standing checks on other faces), are in
+//! `crates/tools/src/bin/fit_recipes.rs`, which prints the table of cosines and generates
+//! `arkit_fitted.rs`. Only these weights come from the capture: no captured displacement
+//! enters a target.
 
-use super::{Definition, NameSet, NamedExpression};
+use super::{Definition, NameSet, NamedExpression, arkit_fitted};
 
 /// ARKit's raw blendshape location string of `name` (one of [`NAMES`], any ASCII case): the
 /// string `ARFaceAnchor.BlendShapeLocation` holds and that Live Link Face, Face Cap and many
@@ -128,6 +142,21 @@ const fn e(
     }
 }
 
+/// A recipe with fitted weights ([`Definition::Fitted`]) and its hand-made one for rigs that
+/// lack a control the fit uses.
+const fn fitted(
+    name: &'static str,
+    action_units: &'static str,
+    description: &'static str,
+    terms: &'static [(&'static str, f64)],
+    fallback: &'static [(&'static str, f64)],
+) -> NamedExpression {
+    NamedExpression {
+        definition: Definition::Fitted { terms, fallback },
+        ..e(name, action_units, description, fallback)
+    }
+}
+
 /// facebem's definition of every ARKit name except the eight `eyeLook*` and `tongueOut`, in
 /// Apple's order.
 pub const EXPRESSIONS: [NamedExpression; 43] = [
@@ -143,43 +172,46 @@ pub const EXPRESSIONS: [NamedExpression; 43] = [
         "inner brow down and in (corrugator); frontalis relaxed +0.5 pushes the whole brow down",
         &[("corrugator_supercilii_r", -1.0), ("frontalis_r", 0.5)],
     ),
-    e(
+    fitted(
         "browInnerUp",
         "AU1",
-        "both brows raised by the frontalis (its medial part is not a separate control); 0.45 \
-         matches the captured ICT browInnerUp's largest motion (6.3 mm) on the ICT face",
+        "inner brows raised (frontalis; its medial part is not a separate control); weights fitted to the captured shape",
+        arkit_fitted::BROW_INNER_UP,
         &[("frontalis_l", -0.45), ("frontalis_r", -0.45)],
     ),
-    e(
+    fitted(
         "browOuterUpLeft",
         "AU2 (left)",
-        "left brow raised by the left frontalis; 0.6 matches the captured ICT browOuterUp_L's \
-         largest motion (8.6 mm) on the ICT face",
+        "left brow raised (frontalis) with the upper lid (levator palpebrae); weights fitted to the captured shape",
+        arkit_fitted::BROW_OUTER_UP_LEFT,
         &[("frontalis_l", -0.6)],
     ),
-    e(
+    fitted(
         "browOuterUpRight",
         "AU2 (right)",
-        "right brow raised by the right frontalis; 0.6 matches the captured ICT browOuterUp_R's \
-         largest motion (8.6 mm) on the ICT face",
+        "right brow raised (frontalis) with the upper lid (levator palpebrae); weights fitted to the captured shape",
+        arkit_fitted::BROW_OUTER_UP_RIGHT,
         &[("frontalis_r", -0.6)],
     ),
-    e(
+    fitted(
         "cheekPuff",
         "AU34",
-        "pressure inside the mouth puffs both cheeks out",
+        "pressure inside the mouth puffs the cheeks out; the lips, held closed (orbicularis oris, mentalis), are pushed forward; weights fitted to the captured shape",
+        arkit_fitted::CHEEK_PUFF,
         &[("cheek_puff", -1.0)],
     ),
-    e(
+    fitted(
         "cheekSquintLeft",
         "AU6 (left)",
-        "left cheek and lower lid raised (orbicularis oculi, orbital part)",
+        "left cheek and lower lid raised (orbicularis oculi, orbital part); weights fitted to the captured shape",
+        arkit_fitted::CHEEK_SQUINT_LEFT,
         &[("orbicularis_oculi_orbital_l", -1.0)],
     ),
-    e(
+    fitted(
         "cheekSquintRight",
         "AU6 (right)",
-        "right cheek and lower lid raised (orbicularis oculi, orbital part)",
+        "right cheek and lower lid raised (orbicularis oculi, orbital part); weights fitted to the captured shape",
+        arkit_fitted::CHEEK_SQUINT_RIGHT,
         &[("orbicularis_oculi_orbital_r", -1.0)],
     ),
     e(
@@ -194,34 +226,38 @@ pub const EXPRESSIONS: [NamedExpression; 43] = [
         "right upper lid closed onto the lower lid",
         &[("orbicularis_oculi_palpebral_r", -1.0)],
     ),
-    e(
+    fitted(
         "eyeSquintLeft",
         "AU7 (left)",
-        "left lids tightened: lower lid up, upper lid a quarter down",
+        "left lids tightened: lower lid and the cheek below it up (orbicularis oculi); weights fitted to the captured shape",
+        arkit_fitted::EYE_SQUINT_LEFT,
         &[
             ("orbicularis_oculi_orbital_l", -0.6),
             ("orbicularis_oculi_palpebral_l", -0.25),
         ],
     ),
-    e(
+    fitted(
         "eyeSquintRight",
         "AU7 (right)",
-        "right lids tightened: lower lid up, upper lid a quarter down",
+        "right lids tightened: lower lid and the cheek below it up (orbicularis oculi); weights fitted to the captured shape",
+        arkit_fitted::EYE_SQUINT_RIGHT,
         &[
             ("orbicularis_oculi_orbital_r", -0.6),
             ("orbicularis_oculi_palpebral_r", -0.25),
         ],
     ),
-    e(
+    fitted(
         "eyeWideLeft",
         "AU5 (left)",
-        "left upper lid raised (levator palpebrae)",
+        "left upper lid raised (levator palpebrae); weights fitted to the captured shape",
+        arkit_fitted::EYE_WIDE_LEFT,
         &[("levator_palpebrae_l", -1.0)],
     ),
-    e(
+    fitted(
         "eyeWideRight",
         "AU5 (right)",
-        "right upper lid raised (levator palpebrae)",
+        "right upper lid raised (levator palpebrae); weights fitted to the captured shape",
+        arkit_fitted::EYE_WIDE_RIGHT,
         &[("levator_palpebrae_r", -1.0)],
     ),
     e(
@@ -263,34 +299,39 @@ pub const EXPRESSIONS: [NamedExpression; 43] = [
             ("orbicularis_oris_lower", -0.2),
         ],
     ),
-    e(
+    fitted(
         "mouthDimpleLeft",
         "AU14 (left)",
-        "left mouth corner drawn back and in (buccinator)",
+        "left mouth corner drawn back and in (buccinator, levator anguli oris, mentalis); weights fitted to the captured shape",
+        arkit_fitted::MOUTH_DIMPLE_LEFT,
         &[("buccinator_l", -1.0)],
     ),
-    e(
+    fitted(
         "mouthDimpleRight",
         "AU14 (right)",
-        "right mouth corner drawn back and in (buccinator)",
+        "right mouth corner drawn back and in (buccinator, levator anguli oris, mentalis); weights fitted to the captured shape",
+        arkit_fitted::MOUTH_DIMPLE_RIGHT,
         &[("buccinator_r", -1.0)],
     ),
-    e(
+    fitted(
         "mouthFrownLeft",
         "AU15 (left)",
-        "left mouth corner pulled down (depressor anguli oris)",
+        "left mouth corner pulled down (depressor anguli oris, mentalis); weights fitted to the captured shape",
+        arkit_fitted::MOUTH_FROWN_LEFT,
         &[("depressor_anguli_oris_l", -1.0)],
     ),
-    e(
+    fitted(
         "mouthFrownRight",
         "AU15 (right)",
-        "right mouth corner pulled down (depressor anguli oris)",
+        "right mouth corner pulled down (depressor anguli oris, mentalis); weights fitted to the captured shape",
+        arkit_fitted::MOUTH_FROWN_RIGHT,
         &[("depressor_anguli_oris_r", -1.0)],
     ),
-    e(
+    fitted(
         "mouthFunnel",
         "AU22 + AU25",
-        "lips funnelled forward and parted: sphincter with both lips slightly everted",
+        "lips funnelled forward and parted (orbicularis oris, the lower lip's depressor); weights fitted to the captured shape",
+        arkit_fitted::MOUTH_FUNNEL,
         &[
             ("orbicularis_oris_upper", -0.6),
             ("orbicularis_oris_lower", -0.6),
@@ -312,32 +353,36 @@ pub const EXPRESSIONS: [NamedExpression; 43] = [
             ("buccinator_r", 0.3),
         ],
     ),
-    e(
+    fitted(
         "mouthLowerDownLeft",
         "AU16 (left)",
-        "left half of the lower lip pulled down",
+        "left half of the lower lip pulled down (depressor labii inferioris); weights fitted to the captured shape",
+        arkit_fitted::MOUTH_LOWER_DOWN_LEFT,
         &[("depressor_labii_inferioris_l", -1.0)],
     ),
-    e(
+    fitted(
         "mouthLowerDownRight",
         "AU16 (right)",
-        "right half of the lower lip pulled down",
+        "right half of the lower lip pulled down (depressor labii inferioris); weights fitted to the captured shape",
+        arkit_fitted::MOUTH_LOWER_DOWN_RIGHT,
         &[("depressor_labii_inferioris_r", -1.0)],
     ),
-    e(
+    fitted(
         "mouthPressLeft",
         "AU24 (left)",
-        "lips pressed together (orbicularis oris, both sides) with the left corner held back",
+        "lips pressed together on the left (mentalis pushes the lower lip up); weights fitted to the captured shape",
+        arkit_fitted::MOUTH_PRESS_LEFT,
         &[
             ("orbicularis_oris_upper", -0.3),
             ("orbicularis_oris_lower", -0.3),
             ("buccinator_l", -0.5),
         ],
     ),
-    e(
+    fitted(
         "mouthPressRight",
         "AU24 (right)",
-        "lips pressed together (orbicularis oris, both sides) with the right corner held back",
+        "lips pressed together on the right (mentalis pushes the lower lip up); weights fitted to the captured shape",
+        arkit_fitted::MOUTH_PRESS_RIGHT,
         &[
             ("orbicularis_oris_upper", -0.3),
             ("orbicularis_oris_lower", -0.3),
@@ -365,36 +410,40 @@ pub const EXPRESSIONS: [NamedExpression; 43] = [
             ("buccinator_l", 0.3),
         ],
     ),
-    e(
+    fitted(
         "mouthRollLower",
         "AU28 (lower lip)",
-        "lower lip rolled in: sphincter of the lower lip, lower lip pushed up",
+        "lower lip rolled in and the chin raised (mentalis, sphincter), its depressor let go; weights fitted to the captured shape",
+        arkit_fitted::MOUTH_ROLL_LOWER,
         &[
             ("orbicularis_oris_lower", -0.7),
             ("depressor_labii_inferioris_l", 0.3),
             ("depressor_labii_inferioris_r", 0.3),
         ],
     ),
-    e(
+    fitted(
         "mouthRollUpper",
         "AU28 (upper lip)",
-        "upper lip rolled in: sphincter of the upper lip, upper lip pushed down",
+        "upper lip rolled in (the mouth's corners held, the lower lip's sphincter), its levator let go; weights fitted to the captured shape",
+        arkit_fitted::MOUTH_ROLL_UPPER,
         &[
             ("orbicularis_oris_upper", -0.7),
             ("levator_labii_superioris_l", 0.3),
             ("levator_labii_superioris_r", 0.3),
         ],
     ),
-    e(
+    fitted(
         "mouthShrugLower",
         "AU17",
-        "chin boss and lower lip pushed up (mentalis)",
+        "chin boss and lower lip pushed up (mentalis); weights fitted to the captured shape",
+        arkit_fitted::MOUTH_SHRUG_LOWER,
         &[("mentalis_l", -1.0), ("mentalis_r", -1.0)],
     ),
-    e(
+    fitted(
         "mouthShrugUpper",
         "AU10 (weak) + AU17",
-        "upper lip pushed up and out by the raised lower lip",
+        "upper lip raised (levator labii superioris alaeque nasi); weights fitted to the captured shape",
+        arkit_fitted::MOUTH_SHRUG_UPPER,
         &[
             ("levator_labii_superioris_l", -0.4),
             ("levator_labii_superioris_r", -0.4),
@@ -402,56 +451,60 @@ pub const EXPRESSIONS: [NamedExpression; 43] = [
             ("mentalis_r", -0.3),
         ],
     ),
-    e(
+    fitted(
         "mouthSmileLeft",
         "AU12 (left)",
-        "left mouth corner pulled up and out (zygomaticus major)",
+        "left mouth corner pulled up and out (levator anguli oris, buccinator, zygomaticus major) with the cheek raised; weights fitted to the captured shape",
+        arkit_fitted::MOUTH_SMILE_LEFT,
         &[("zygomaticus_major_l", -1.0)],
     ),
-    e(
+    fitted(
         "mouthSmileRight",
         "AU12 (right)",
-        "right mouth corner pulled up and out (zygomaticus major)",
+        "right mouth corner pulled up and out (levator anguli oris, buccinator, zygomaticus major) with the cheek raised; weights fitted to the captured shape",
+        arkit_fitted::MOUTH_SMILE_RIGHT,
         &[("zygomaticus_major_r", -1.0)],
     ),
-    e(
+    fitted(
         "mouthStretchLeft",
         "AU20 (left)",
-        "left corner pulled straight out (risorius), a little down (depressor anguli oris for \
-         the platysma)",
+        "left corner pulled out and down (depressor anguli oris for the platysma, zygomaticus major); weights fitted to the captured shape",
+        arkit_fitted::MOUTH_STRETCH_LEFT,
         &[("risorius_l", -1.0), ("depressor_anguli_oris_l", -0.3)],
     ),
-    e(
+    fitted(
         "mouthStretchRight",
         "AU20 (right)",
-        "right corner pulled straight out (risorius), a little down (depressor anguli oris for \
-         the platysma)",
+        "right corner pulled out and down (depressor anguli oris for the platysma, zygomaticus major); weights fitted to the captured shape",
+        arkit_fitted::MOUTH_STRETCH_RIGHT,
         &[("risorius_r", -1.0), ("depressor_anguli_oris_r", -0.3)],
     ),
-    e(
+    fitted(
         "mouthUpperUpLeft",
         "AU10 (left)",
-        "left half of the upper lip raised (levator labii superioris)",
+        "left half of the upper lip raised (levator labii superioris); weights fitted to the captured shape",
+        arkit_fitted::MOUTH_UPPER_UP_LEFT,
         &[("levator_labii_superioris_l", -1.0)],
     ),
-    e(
+    fitted(
         "mouthUpperUpRight",
         "AU10 (right)",
-        "right half of the upper lip raised (levator labii superioris)",
+        "right half of the upper lip raised (levator labii superioris); weights fitted to the captured shape",
+        arkit_fitted::MOUTH_UPPER_UP_RIGHT,
         &[("levator_labii_superioris_r", -1.0)],
     ),
-    e(
+    fitted(
         "noseSneerLeft",
         "AU9 (left)",
-        "left side of the nose wrinkled and the upper lip lifted (levator labii superioris \
-         alaeque nasi)",
+        "left side of the nose wrinkled and the upper lip lifted (levator labii superioris, orbicularis oculi, procerus); weights fitted to the captured shape",
+        arkit_fitted::NOSE_SNEER_LEFT,
         &[("levator_labii_superioris_alaeque_nasi_l", -1.0)],
     ),
-    e(
+    fitted(
         "noseSneerRight",
         "AU9 (right)",
-        "right side of the nose wrinkled and the upper lip lifted (levator labii superioris \
-         alaeque nasi)",
+        "right side of the nose wrinkled and the upper lip lifted (levator labii superioris, orbicularis oculi, procerus); weights fitted to the captured shape",
+        arkit_fitted::NOSE_SNEER_RIGHT,
         &[("levator_labii_superioris_alaeque_nasi_r", -1.0)],
     ),
 ];

@@ -36,6 +36,7 @@
 //! ```
 
 pub mod arkit;
+mod arkit_fitted;
 pub mod vrm;
 
 pub mod presets;
@@ -171,6 +172,15 @@ pub enum Definition {
     Terms(&'static [(&'static str, f64)]),
     /// facebem's own preset of this name ([`crate::expressions::presets::find`]).
     Preset(&'static str),
+    /// Slider values fitted to a captured expression (`terms`, used when the rig has every
+    /// control they name), and the hand-made recipe for a rig that lacks one (`fallback`,
+    /// resolved as [`Definition::Terms`]). See [`arkit`]'s calibration.
+    Fitted {
+        /// The fitted recipe.
+        terms: &'static [(&'static str, f64)],
+        /// The hand-made recipe.
+        fallback: &'static [(&'static str, f64)],
+    },
 }
 
 /// One named expression of a standard.
@@ -198,10 +208,14 @@ pub struct Resolved {
 }
 
 impl NamedExpression {
-    /// The control ids the definition uses (empty for a preset or `neutral`).
+    /// The control ids the definition uses (empty for a preset or `neutral`; a fitted recipe's
+    /// hand-made one, whose controls decide whether a rig can make it at all).
     pub fn controls(&self) -> Vec<&'static str> {
         match self.definition {
-            Definition::Terms(terms) => terms.iter().map(|(id, _)| *id).collect(),
+            Definition::Terms(terms)
+            | Definition::Fitted {
+                fallback: terms, ..
+            } => terms.iter().map(|(id, _)| *id).collect(),
             Definition::Preset(_) => Vec::new(),
         }
     }
@@ -212,7 +226,7 @@ impl NamedExpression {
             Definition::Preset(name) => {
                 presets::find(name).map_or(self.action_units, |p| p.action_units)
             }
-            Definition::Terms(_) => self.action_units,
+            Definition::Terms(_) | Definition::Fitted { .. } => self.action_units,
         }
     }
 
@@ -228,22 +242,58 @@ impl NamedExpression {
                     missing: Vec::new(),
                 })
             }
-            Definition::Terms(terms) => {
-                let mut sliders = vec![0.0; control_ids.len()];
-                let mut missing = Vec::new();
-                for &(id, value) in terms {
-                    match control_ids.iter().position(|c| c.eq_ignore_ascii_case(id)) {
-                        Some(k) => sliders[k] = value,
-                        None => missing.push(id),
-                    }
-                }
-                if !terms.is_empty() && missing.len() == terms.len() {
-                    None
+            Definition::Fitted { terms, fallback } => {
+                let has = |id: &str| control_ids.iter().any(|c| c.eq_ignore_ascii_case(id));
+                let chosen = if terms.iter().all(|(id, _)| has(id)) {
+                    terms
                 } else {
-                    Some(Resolved { sliders, missing })
-                }
+                    fallback
+                };
+                Self::resolve_terms(chosen, control_ids)
+            }
+            Definition::Terms(terms) => Self::resolve_terms(terms, control_ids),
+        }
+    }
+
+    /// [`Self::resolve`] of a [`Definition::Terms`].
+    fn resolve_terms(
+        terms: &'static [(&'static str, f64)],
+        control_ids: &[String],
+    ) -> Option<Resolved> {
+        let mut sliders = vec![0.0; control_ids.len()];
+        let mut missing = Vec::new();
+        for &(id, value) in terms {
+            match control_ids.iter().position(|c| c.eq_ignore_ascii_case(id)) {
+                Some(k) => sliders[k] = value,
+                None => missing.push(id),
             }
         }
+        if !terms.is_empty() && missing.len() == terms.len() {
+            None
+        } else {
+            Some(Resolved { sliders, missing })
+        }
+    }
+}
+
+/// The control of the other side with the slider value that makes the mirrored motion:
+/// `_l` ↔ `_r`, `jaw_lateral` negated, unpaired controls as they are.
+///
+/// ```
+/// use facebem::expressions::mirrored_control;
+/// assert_eq!(mirrored_control("risorius_l", -0.5), ("risorius_r".to_string(), -0.5));
+/// assert_eq!(mirrored_control("jaw_lateral", -1.0), ("jaw_lateral".to_string(), 1.0));
+/// assert_eq!(mirrored_control("procerus", -0.2), ("procerus".to_string(), -0.2));
+/// ```
+pub fn mirrored_control(id: &str, value: f64) -> (String, f64) {
+    if id == "jaw_lateral" {
+        (id.to_string(), -value)
+    } else if let Some(stem) = id.strip_suffix("_l") {
+        (format!("{stem}_r"), value)
+    } else if let Some(stem) = id.strip_suffix("_r") {
+        (format!("{stem}_l"), value)
+    } else {
+        (id.to_string(), value)
     }
 }
 

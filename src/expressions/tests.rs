@@ -52,12 +52,14 @@ fn tables_cover_each_standard_except_what_needs_eyeballs_or_a_tongue() {
 fn definitions_use_agreed_ids_once_with_values_in_range() {
     for e in all() {
         match e.definition {
-            Definition::Terms(terms) => {
+            Definition::Terms(_) | Definition::Fitted { .. } => {
                 assert!(!e.action_units.is_empty(), "{}", e.name);
-                for (k, (id, v)) in terms.iter().enumerate() {
-                    assert!(AGREED_CONTROL_IDS.contains(id), "{}: {id}", e.name);
-                    assert!((-1.0..=1.0).contains(v) && *v != 0.0, "{}: {id}", e.name);
-                    assert!(!terms[..k].iter().any(|(j, _)| j == id), "{}: {id}", e.name);
+                for terms in recipes(e) {
+                    for (k, (id, v)) in terms.iter().enumerate() {
+                        assert!(AGREED_CONTROL_IDS.contains(id), "{}: {id}", e.name);
+                        assert!((-1.0..=1.0).contains(v) && *v != 0.0, "{}: {id}", e.name);
+                        assert!(!terms[..k].iter().any(|(j, _)| j == id), "{}: {id}", e.name);
+                    }
                 }
             }
             Definition::Preset(name) => {
@@ -71,21 +73,22 @@ fn definitions_use_agreed_ids_once_with_values_in_range() {
 
 /// The control of the other side with the value that means the mirrored motion.
 fn mirror((id, v): (&str, f64)) -> (String, f64) {
-    if id == "jaw_lateral" {
-        (id.to_string(), -v)
-    } else if let Some(stem) = id.strip_suffix("_l") {
-        (format!("{stem}_r"), v)
-    } else if let Some(stem) = id.strip_suffix("_r") {
-        (format!("{stem}_l"), v)
-    } else {
-        (id.to_string(), v)
-    }
+    mirrored_control(id, v)
 }
 
 fn sorted_terms(terms: impl Iterator<Item = (String, f64)>) -> Vec<(String, f64)> {
     let mut t: Vec<(String, f64)> = terms.collect();
     t.sort_by(|a, b| a.0.cmp(&b.0));
     t
+}
+
+/// Every recipe of a slider combination: its terms, or a fitted one's terms and fallback.
+fn recipes(e: &NamedExpression) -> Vec<&'static [(&'static str, f64)]> {
+    match e.definition {
+        Definition::Terms(t) => vec![t],
+        Definition::Fitted { terms, fallback } => vec![terms, fallback],
+        Definition::Preset(_) => panic!("{} is not a slider combination", e.name),
+    }
 }
 
 #[test]
@@ -96,12 +99,11 @@ fn left_and_right_are_exact_mirrors() {
             continue;
         };
         let right = find(&format!("{stem}Right")).expect("a Right for every Left");
-        let (Definition::Terms(l), Definition::Terms(r)) = (e.definition, right.definition) else {
-            panic!("{} is not a slider combination", e.name);
-        };
-        let mirrored = sorted_terms(l.iter().map(|&t| mirror(t)));
-        let right_terms = sorted_terms(r.iter().map(|(id, v)| (id.to_string(), *v)));
-        assert_eq!(mirrored, right_terms, "{} vs {}", e.name, right.name);
+        for (l, r) in recipes(e).into_iter().zip(recipes(right)) {
+            let mirrored = sorted_terms(l.iter().map(|&t| mirror(t)));
+            let right_terms = sorted_terms(r.iter().map(|(id, v)| (id.to_string(), *v)));
+            assert_eq!(mirrored, right_terms, "{} vs {}", e.name, right.name);
+        }
         pairs += 1;
     }
     // ARKit: 16 Left/Right pairs among the 43 (brow down/outer up, cheek squint, eye blink/
@@ -115,8 +117,20 @@ fn left_and_right_are_exact_mirrors() {
             .into_iter()
             .filter(|id| id.ends_with("_l") || id.ends_with("_r"))
             .collect();
+        let fitted = match e.definition {
+            Definition::Fitted { terms, .. } => terms.iter().map(|(id, _)| *id).collect(),
+            _ => Vec::new(),
+        };
+        let paired_fitted = fitted
+            .iter()
+            .filter(|id| id.ends_with("_l") || id.ends_with("_r"));
         if e.name != "mouthLeft" {
             assert!(paired.iter().all(|id| id.ends_with("_l")), "{}", e.name);
+            assert!(
+                paired_fitted.clone().all(|id| id.ends_with("_l")),
+                "{}",
+                e.name
+            );
         }
     }
 }
@@ -169,9 +183,23 @@ fn with_the_ten_thesis_muscles_the_expressions_without_them_are_left_out() {
 
 #[test]
 fn sliders_go_to_the_rigs_own_order() {
+    // A rig without the fitted smile's other controls gets the hand-made recipe.
     let rig = ids(&["zygomaticus_major_r", "jaw_open", "zygomaticus_major_l"]);
     let r = find("MOUTHSMILELEFT").unwrap().resolve(&rig).unwrap();
     assert_eq!(r.sliders, vec![0.0, 0.0, -1.0]);
+    // With every control, the fitted recipe, in the rig's order.
+    let all_ids = ids(&AGREED_CONTROL_IDS);
+    let smile = find("mouthSmileLeft").unwrap();
+    let Definition::Fitted { terms, .. } = smile.definition else {
+        panic!("the smile is fitted");
+    };
+    let r = smile.resolve(&all_ids).unwrap();
+    assert!(r.missing.is_empty());
+    assert_eq!(r.sliders.iter().filter(|v| **v != 0.0).count(), terms.len());
+    for (id, v) in terms {
+        let k = AGREED_CONTROL_IDS.iter().position(|c| c == id).unwrap();
+        assert_eq!(r.sliders[k], *v, "{id}");
+    }
     let r = find(" aa ").unwrap().resolve(&rig).unwrap();
     assert_eq!(r.sliders, vec![0.0, -0.7, 0.0]);
     assert_eq!(r.missing.len(), 4);

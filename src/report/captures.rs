@@ -35,15 +35,19 @@ pub struct Row {
     pub captured_largest_mm: f64,
 }
 
-/// The ICT file stems of an ARKit name (`_L`/`_R`; browInnerUp and cheekPuff in two halves).
+/// The ICT file stems of an ARKit name (`_L`/`_R`; browInnerUp and cheekPuff in two halves;
+/// the jaw's and the mouth's sideways moves are directions and keep their names).
 ///
 /// ```
 /// use facebem::report::captures::ict_stems;
 /// assert_eq!(ict_stems("mouthSmileLeft"), ["mouthSmile_L"]);
 /// assert_eq!(ict_stems("cheekPuff"), ["cheekPuff_L", "cheekPuff_R"]);
+/// assert_eq!(ict_stems("mouthLeft"), ["mouthLeft"]);
 /// ```
 pub fn ict_stems(name: &str) -> Vec<String> {
-    if let Some(stem) = name.strip_suffix("Left") {
+    if matches!(name, "jawLeft" | "jawRight" | "mouthLeft" | "mouthRight") {
+        vec![name.to_string()]
+    } else if let Some(stem) = name.strip_suffix("Left") {
         vec![format!("{stem}_L")]
     } else if let Some(stem) = name.strip_suffix("Right") {
         vec![format!("{stem}_R")]
@@ -82,6 +86,23 @@ pub fn captured(dir: &Path, name: &str, n: usize) -> std::io::Result<Option<Vec<
     Ok(Some(field))
 }
 
+/// A field on the rig's vertices (cm, ICT's unit) as mm on the input file's vertices, through
+/// the face's `input_to_vertex` (zero where an input vertex has no rig vertex): the frame the
+/// captures are given in.
+///
+/// ```
+/// use facebem::report::captures::on_input_vertices_mm;
+/// use glam::DVec3;
+/// let mm = on_input_vertices_mm(&[Some(1), None], &[DVec3::ZERO, DVec3::X]);
+/// assert_eq!(mm, [DVec3::new(10.0, 0.0, 0.0), DVec3::ZERO]);
+/// ```
+pub fn on_input_vertices_mm(input_to_vertex: &[Option<u32>], field_cm: &[DVec3]) -> Vec<DVec3> {
+    input_to_vertex
+        .iter()
+        .map(|v| v.map_or(DVec3::ZERO, |v| 10.0 * field_cm[v as usize]))
+        .collect()
+}
+
 /// Rigs the narrow face and the whole head of the repository at `root` and compares every
 /// ARKit target with its capture (the assets are in cm; fields compared in mm).
 pub fn head_and_narrow_face(
@@ -95,14 +116,7 @@ pub fn head_and_narrow_face(
         named_targets(&model.basis, &model.gltf_params(&GltfParams::default()))?
             .targets
             .into_iter()
-            .map(|(name, field)| {
-                let per_input = narrow
-                    .input_to_vertex
-                    .iter()
-                    .map(|v| v.map_or(DVec3::ZERO, |v| 10.0 * field[v as usize]))
-                    .collect();
-                (name, per_input)
-            })
+            .map(|(name, field)| (name, on_input_vertices_mm(&narrow.input_to_vertex, &field)))
             .collect();
     let scene = Scene::read(
         &root.join("assets/heads/ict_generic_head.obj"),

@@ -206,11 +206,13 @@ fn pose_accepts_arkit_and_vrm_names() {
             out,
         )
     };
-    // mouthSmileLeft is the left zygomaticus fully contracted (case does not matter).
+    // mouthSmileLeft is its recipe's sliders (case does not matter).
     let (smile, _) = pose_of("mouthSmileLeft", &[]);
-    let mut sliders = vec![0.0; model.muscle_ids().len()];
-    sliders[model.basis.muscle_index("zygomaticus_major_l").unwrap()] = -1.0;
-    assert_eq!(smile, model.pose(&sliders).unwrap());
+    let recipe = facebem::expressions::find("mouthSmileLeft").unwrap();
+    let recipe = recipe.resolve(model.muscle_ids()).unwrap();
+    assert!(recipe.missing.is_empty());
+    assert!(recipe.sliders[model.basis.muscle_index("zygomaticus_major_l").unwrap()] < 0.0);
+    assert_eq!(smile, model.pose(&recipe.sliders).unwrap());
     assert_eq!(pose_of("MOUTHSMILELEFT", &[]).0, smile);
     // VRM's happy is facebem's happy.
     let happy = facebem::expressions::presets::find("happy")
