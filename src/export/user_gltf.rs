@@ -140,11 +140,25 @@ pub fn add_targets(
                 None => by_accessor.push((p.position_accessor, p.count, vec![range])),
             }
         }
+        // Only the vertices the mesh's own triangles use get its deltas (meshes may share an
+        // accessor's vertices with other meshes).
+        let mut used = vec![false; n];
+        for t in scene
+            .triangles
+            .get(placement.triangles.start as usize..placement.triangles.end as usize)
+            .unwrap_or_default()
+        {
+            for &v in t {
+                if let Some(u) = used.get_mut(v as usize) {
+                    *u = true;
+                }
+            }
+        }
         let moves = targets.iter().any(|(_, field)| {
             by_accessor
                 .iter()
                 .flat_map(|a| a.2.iter())
-                .any(|r| field[r.clone()].iter().any(|d| *d != DVec3::ZERO))
+                .any(|r| r.clone().any(|v| used[v] && field[v] != DVec3::ZERO))
         });
         if !moves {
             continue;
@@ -170,10 +184,9 @@ pub fn add_targets(
             for (slot, (_, count, ranges)) in by_accessor.iter().enumerate() {
                 if let Some(normals) = &normals {
                     let local = normal_deltas(
-                        &neutral_normals,
-                        normals,
+                        (&neutral_normals, normals),
                         &first,
-                        ranges,
+                        (ranges, &used),
                         *count,
                         mesh_from_world_normal,
                     );
@@ -183,8 +196,11 @@ pub fn add_targets(
                 }
                 let mut local = vec![DVec3::ZERO; *count as usize];
                 for r in ranges {
-                    for (out, d) in local.iter_mut().zip(&field[r.clone()]) {
-                        let l = inverse * *d;
+                    for (out, v) in local.iter_mut().zip(r.clone()) {
+                        if !used[v] {
+                            continue;
+                        }
+                        let l = inverse * field[v];
                         if l.length_squared() > out.length_squared() {
                             *out = l;
                         }
@@ -386,18 +402,21 @@ fn primitives_with_normals(root: &Value, mesh: usize) -> bool {
 /// The normal deltas of one target on one `POSITION` accessor of `count` vertices (the
 /// primitives' `ranges` of scene vertices): the unit vertex normal of the moved surface less
 /// the neutral one, each in the mesh's frame, at each vertex's first copy at the same place
-/// (`first`). Deltas under [`NORMAL_DELTA_FLOOR`] are written as zero.
+/// (`first`), only where the mesh's triangles use the vertex (`used`). Deltas under
+/// [`NORMAL_DELTA_FLOOR`] are written as zero.
 fn normal_deltas(
-    neutral: &[DVec3],
-    moved: &[DVec3],
+    (neutral, moved): (&[DVec3], &[DVec3]),
     first: &[u32],
-    ranges: &[std::ops::Range<usize>],
+    (ranges, used): (&[std::ops::Range<usize>], &[bool]),
     count: u32,
     mesh_from_world_normal: DMat3,
 ) -> Vec<DVec3> {
     let mut local = vec![DVec3::ZERO; count as usize];
     for r in ranges {
         for (out, v) in local.iter_mut().zip(r.clone()) {
+            if !used[v] {
+                continue;
+            }
             let w = first.get(v).map_or(v, |&f| f as usize);
             let to_mesh = |n: DVec3| (mesh_from_world_normal * n).normalize_or_zero();
             let d = to_mesh(moved[w]) - to_mesh(neutral[w]);

@@ -472,6 +472,17 @@ fn facebems_own_glb_of_a_head_is_a_head() {
         "{}",
         String::from_utf8_lossy(&run.stderr)
     );
+    // Its meshes' primitives share one POSITION accessor under one transform: read once
+    // (regression: 13 copies, 375 843 scene vertices).
+    let scene = face_prep::parts::Scene::read(&first, &Default::default()).unwrap();
+    let primitives: Vec<_> = scene
+        .gltf_meshes
+        .iter()
+        .flat_map(|m| &m.primitives)
+        .collect();
+    assert!(scene.gltf_meshes.len() > 1 && primitives.len() > scene.gltf_meshes.len());
+    assert!(primitives.iter().all(|p| *p == primitives[0]));
+    assert_eq!(scene.positions.len(), primitives[0].count as usize);
     let bytes = std::fs::read(&first).unwrap();
     let (before, abin, after, bbin, output) = round_trip(dir.path(), "again.glb", &bytes);
     for key in ["nodes", "materials", "asset"] {

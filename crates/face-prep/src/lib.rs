@@ -37,9 +37,8 @@ pub use input::{gltf_read, limits, obj_text, units};
 pub use error::{LoopSummary, MuscleFileError, ObjLineError, PrepError};
 pub use features::{Box2, FeatureBoxes};
 pub use gltf_read::GltfError;
-pub use input::face_mesh::{
-    FaceMesh, GltfFaceData, LoadOptions, WELD_RELATIVE_TOLERANCE, gltf_face_data, load_face,
-};
+pub use input::face_mesh::{FaceMesh, LoadOptions, WELD_RELATIVE_TOLERANCE, load_face};
+pub use input::gltf_face::{GltfFaceData, gltf_face_data};
 pub use limits::InputLimits;
 pub use muscle_kind::{ControlSpec, Generator, MuscleKind, Placed, Side};
 pub use muscles::Muscle;

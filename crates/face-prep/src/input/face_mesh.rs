@@ -3,10 +3,10 @@
 use crate::error::PrepError;
 use crate::frame::contact::{self, ContactLine};
 use crate::frame::topology;
-use crate::input::gltf_read::{self, Document};
-use crate::input::limits::{InputLimits, MAX_COORDINATE, read_input_file};
+use crate::input::gltf_face::gltf_face_data;
+use crate::input::limits::{InputLimits, check_coordinates, read_input_file};
 use crate::input::obj_text;
-use glam::{DMat4, DVec3};
+use glam::DVec3;
 use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
 use std::io::BufRead;
@@ -41,23 +41,6 @@ pub struct FaceMesh {
     /// face ([`crate::frame::contact::bag`]); 0 when the mouth opens onto nothing.
     #[serde(default)]
     pub mouth_bag_vertices: usize,
-}
-
-/// A position must be finite and within [`MAX_COORDINATE`] of the origin.
-fn check_coordinates(input_index: usize, p: DVec3) -> Result<(), PrepError> {
-    if !p.is_finite() {
-        return Err(PrepError::NonFiniteVertex {
-            input_index,
-            position: p.to_array(),
-        });
-    }
-    if p.abs().max_element() > MAX_COORDINATE {
-        return Err(PrepError::CoordinateTooLarge {
-            input_index,
-            position: p.to_array(),
-        });
-    }
-    Ok(())
 }
 
 /// Positions closer than this fraction of the used positions' bounding-box diagonal are one
@@ -358,187 +341,7 @@ impl FaceMesh {
     }
 }
 
-/// The vertices of a glTF face mesh as the file has them (before welding): every primitive's
-/// POSITION (world frame: the node transforms applied) concatenated, the triangles indexing
-/// them, and TEXCOORD_0 and NORMAL where the file has them.
-#[derive(Clone, Debug, PartialEq)]
-pub struct GltfFaceData {
-    /// Positions, world frame, primitives concatenated in order.
-    pub positions: Vec<DVec3>,
-    /// Triangles indexing [`GltfFaceData::positions`] (strips and fans expanded; wound
-    /// counter-clockwise in the world frame).
-    pub triangles: Vec<[u32; 3]>,
-    /// TEXCOORD_0 per position (glTF convention), if any primitive has it (zeros elsewhere).
-    pub uvs: Option<Vec<[f32; 2]>>,
-    /// Unit NORMAL per position (world frame), if any primitive has it (`None` elsewhere).
-    pub normals: Option<Vec<Option<DVec3>>>,
-    /// Per triangle: the glTF material of its primitive ([`crate::gltf_read::material_looks`]).
-    pub triangle_material: Vec<Option<u32>>,
-}
-
-/// Reads the first mesh of a glTF/GLB document (or the mesh named `mesh_name`) as the file has
-/// it, within `limits`; [`FaceMesh::from_gltf_bytes`] welds and validates the same data.
-pub fn gltf_face_data(
-    bytes: &[u8],
-    base: Option<&Path>,
-    mesh_name: Option<&str>,
-    limits: &InputLimits,
-) -> Result<GltfFaceData, PrepError> {
-    let mut doc = Document::parse(bytes, base, limits)?;
-    let labels = gltf_read::mesh_labels(&doc.root);
-    let mesh = select_mesh(&doc, &labels, mesh_name)?;
-    gltf_mesh_data(&mut doc, &labels, mesh, limits)
-}
-
-/// [`gltf_face_data`] of mesh number `mesh` of a parsed document (`labels`: its meshes' labels).
-pub(crate) fn gltf_mesh_data(
-    doc: &mut Document,
-    labels: &[String],
-    mesh: usize,
-    limits: &InputLimits,
-) -> Result<GltfFaceData, PrepError> {
-    let world = doc.mesh_world_transform(mesh)?.unwrap_or(DMat4::IDENTITY);
-    let normal_matrix = glam::DMat3::from_mat4(world).inverse().transpose();
-    let mut positions = Vec::new();
-    let mut triangles = Vec::new();
-    let mut uvs: Vec<Option<[f32; 2]>> = Vec::new();
-    let mut normals: Vec<Option<DVec3>> = Vec::new();
-    let mut triangle_material = Vec::new();
-    for (pi, (pos, indices, mode)) in gltf_read::primitives(&doc.root, mesh)
-        .into_iter()
-        .enumerate()
-    {
-        let err = |reason: &str| PrepError::GltfPrimitive {
-            mesh: labels.get(mesh).cloned().unwrap_or_default(),
-            primitive: pi,
-            reason: reason.to_owned(),
-        };
-        let pos = pos.ok_or_else(|| err("no POSITION attribute"))?;
-        let base = positions.len() as u32;
-        let pos: Vec<DVec3> = doc
-            .read_vec3(pos, "POSITION")?
-            .into_iter()
-            .map(|p| world.transform_point3(p))
-            .collect();
-        // Every position, used or not (the exports write them all), in the world frame.
-        for (i, p) in pos.iter().enumerate() {
-            check_coordinates(positions.len() + i, *p)?;
-        }
-        let n = pos.len() as u32;
-        limits.check_count(
-            "positions",
-            (positions.len() + pos.len()) as u64,
-            limits.max_positions,
-        )?;
-        use gltf::json::mesh::Semantic;
-        let end = positions.len() + pos.len();
-        if let Some(a) = gltf_read::attribute(&doc.root, mesh, pi, Semantic::TexCoords(0)) {
-            uvs.extend(doc.read_texcoords(a)?.into_iter().map(Some));
-        }
-        uvs.resize(end, None);
-        if let Some(a) = gltf_read::attribute(&doc.root, mesh, pi, Semantic::Normals) {
-            let read = doc.read_vec3(a, "NORMAL")?;
-            normals.extend(
-                read.into_iter()
-                    .map(|n| (normal_matrix * n).try_normalize()),
-            );
-        }
-        normals.resize(end, None);
-        positions.extend(pos);
-        let idx: Vec<u32> = match indices {
-            Some(i) => doc.read_indices(i)?,
-            None => (0..n).collect(),
-        };
-        let tris = primitive_triangles(&idx, mode, err)?;
-        limits.check_count(
-            "triangles",
-            (triangles.len() + tris.len()) as u64,
-            limits.max_triangles,
-        )?;
-        for t in tris {
-            if let Some(&i) = t.iter().find(|&&i| i >= n) {
-                return Err(err(&format!(
-                    "index {i} is beyond the POSITION accessor's {n} elements"
-                )));
-            }
-            triangles.push(t.map(|i| i + base));
-        }
-        let material = (doc.root.meshes.get(mesh))
-            .and_then(|m| m.primitives.get(pi)?.material)
-            .map(|m| m.value() as u32);
-        triangle_material.resize(triangles.len(), material);
-    }
-    if world.determinant() < 0.0 {
-        for t in &mut triangles {
-            t.swap(1, 2);
-        }
-    }
-    Ok(GltfFaceData {
-        positions,
-        triangles,
-        uvs: uvs
-            .iter()
-            .any(Option::is_some)
-            .then(|| uvs.iter().map(|t| t.unwrap_or([0.0; 2])).collect()),
-        normals: normals.iter().any(Option::is_some).then_some(normals),
-        triangle_material,
-    })
-}
-
-/// Index of the mesh named `mesh_name` (the first mesh without a name); `labels` are the
-/// meshes' labels ([`gltf_read::mesh_labels`]).
-fn select_mesh(
-    doc: &Document,
-    labels: &[String],
-    mesh_name: Option<&str>,
-) -> Result<usize, PrepError> {
-    Ok(match mesh_name {
-        None if labels.is_empty() => return Err(PrepError::GltfNoMesh),
-        None => 0,
-        Some(name) => doc
-            .root
-            .meshes
-            .iter()
-            .position(|m| m.name.as_deref() == Some(name))
-            .ok_or_else(|| PrepError::GltfMeshNotFound {
-                name: name.to_owned(),
-                available: labels.to_vec(),
-            })?,
-    })
-}
-
-/// The triangles of a primitive of mode `mode` over the indices `idx` (a list, strip or fan);
-/// any other mode is an error (`err`).
-fn primitive_triangles(
-    idx: &[u32],
-    mode: gltf::json::validation::Checked<gltf::json::mesh::Mode>,
-    err: impl Fn(&str) -> PrepError,
-) -> Result<Vec<[u32; 3]>, PrepError> {
-    use gltf::json::mesh::Mode;
-    use gltf::json::validation::Checked;
-    Ok(match mode {
-        Checked::Valid(Mode::Triangles) => {
-            idx.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect()
-        }
-        Checked::Valid(Mode::TriangleStrip) => (2..idx.len())
-            .map(|k| {
-                if k % 2 == 0 {
-                    [idx[k - 2], idx[k - 1], idx[k]]
-                } else {
-                    [idx[k - 1], idx[k - 2], idx[k]]
-                }
-            })
-            .collect(),
-        Checked::Valid(Mode::TriangleFan) => (2..idx.len())
-            .map(|k| [idx[0], idx[k - 1], idx[k]])
-            .collect(),
-        Checked::Valid(other) => {
-            return Err(err(&format!("mode {other:?} is not a triangle mode")));
-        }
-        Checked::Invalid => return Err(err("invalid mode")),
-    })
-}
-
+/// A glTF face: [`gltf_face_data`] welded and validated.
 fn gltf_mesh(
     bytes: &[u8],
     base: Option<&Path>,

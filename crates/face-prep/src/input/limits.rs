@@ -108,3 +108,20 @@ pub fn read_input_file(path: &std::path::Path, limits: &InputLimits) -> Result<V
     limits.check_file_bytes(bytes.len() as u64)?;
     Ok(bytes)
 }
+
+/// A position must be finite and within [`MAX_COORDINATE`] of the origin.
+pub(crate) fn check_coordinates(input_index: usize, p: glam::DVec3) -> Result<(), PrepError> {
+    if !p.is_finite() {
+        return Err(PrepError::NonFiniteVertex {
+            input_index,
+            position: p.to_array(),
+        });
+    }
+    if p.abs().max_element() > MAX_COORDINATE {
+        return Err(PrepError::CoordinateTooLarge {
+            input_index,
+            position: p.to_array(),
+        });
+    }
+    Ok(())
+}

@@ -4,6 +4,7 @@
 //! ([`units`]).
 
 pub(crate) mod face_mesh;
+pub(crate) mod gltf_face;
 pub mod gltf_read;
 pub mod limits;
 pub mod obj_text;

@@ -9,7 +9,7 @@ use std::path::Path;
 use glam::DVec3;
 
 use crate::error::PrepError;
-use crate::input::face_mesh::gltf_mesh_data;
+use crate::input::gltf_face::gltf_mesh_data;
 use crate::input::gltf_read::{self, Document};
 use crate::input::limits::{InputLimits, read_input_file};
 use crate::input::obj_text;
@@ -22,8 +22,8 @@ pub enum VertexSource {
         /// 0-based index among the `v` lines.
         index: u32,
     },
-    /// Position `vertex` of glTF mesh `mesh` (its primitives' positions concatenated, as
-    /// [`crate::gltf_face_data`] reads them).
+    /// Position `vertex` of glTF mesh `mesh` (its primitives' POSITION accessors in order, a
+    /// shared one once, as [`crate::gltf_face_data`] reads them).
     Gltf {
         /// The mesh.
         mesh: u32,
@@ -56,8 +56,11 @@ pub struct GltfMeshPlacement {
     /// The world transform of the first node instantiating the mesh (identity if none).
     pub world_from_mesh: glam::DMat4,
     /// Per primitive, in order: its first scene vertex, its vertex count and its `POSITION`
-    /// accessor.
+    /// accessor (primitives sharing an accessor share its scene vertices).
     pub primitives: Vec<PrimitivePlacement>,
+    /// Its triangles in [`Scene::triangles`] (meshes sharing an accessor share vertices, not
+    /// triangles).
+    pub triangles: std::ops::Range<u32>,
 }
 
 /// One primitive's vertices in a [`Scene`] ([`GltfMeshPlacement`]).
@@ -177,47 +180,84 @@ impl Scene {
         let mesh_labels = gltf_read::mesh_labels(&doc.root);
         let mut scene = Scene::default();
         let mut label_index: HashMap<String, u32> = HashMap::new();
+        // One scene vertex per POSITION accessor and world transform: primitives and meshes
+        // that share an accessor under the same transform share its vertices (a file of 13
+        // primitives over one accessor read as 13 copies of every vertex).
+        let mut placed: HashMap<(u32, [u64; 16]), u32> = HashMap::new();
         for mesh in 0..mesh_labels.len() {
             let data = gltf_mesh_data(&mut doc, &mesh_labels, mesh, limits)?;
-            let base = scene.positions.len() as u32;
-            let mut first = base;
+            let world_from_mesh = doc
+                .mesh_world_transform(mesh)?
+                .unwrap_or(glam::DMat4::IDENTITY);
+            let world_bits = world_from_mesh.to_cols_array().map(|c| (c + 0.0).to_bits());
             let mut placement = GltfMeshPlacement {
-                world_from_mesh: doc
-                    .mesh_world_transform(mesh)?
-                    .unwrap_or(glam::DMat4::IDENTITY),
+                world_from_mesh,
                 primitives: Vec::new(),
+                triangles: 0..0,
             };
+            // The mesh's vertices as `gltf_mesh_data` lays them out (each accessor once, in
+            // order), and where each goes in the scene.
+            let mut to_scene = vec![0u32; data.positions.len()];
+            let mut local_first = 0u32;
             for (pos, _, _) in gltf_read::primitives(&doc.root, mesh) {
                 let Some(pos) = pos else { continue };
+                let position_accessor = pos as u32;
+                if let Some(p) = placement
+                    .primitives
+                    .iter()
+                    .find(|p| p.position_accessor == position_accessor)
+                    .copied()
+                {
+                    placement.primitives.push(p);
+                    continue;
+                }
                 let count = doc.root.accessors.get(pos).map_or(0, |a| a.count.0 as u32);
+                let local = local_first as usize..(local_first + count) as usize;
+                let Some(positions) = data.positions.get(local.clone()) else {
+                    return Err(PrepError::GltfPrimitive {
+                        mesh: mesh_labels[mesh].clone(),
+                        primitive: placement.primitives.len(),
+                        reason: "POSITION count differs from the accessor's".into(),
+                    });
+                };
+                let first = *placed
+                    .entry((position_accessor, world_bits))
+                    .or_insert_with(|| {
+                        let first = scene.positions.len() as u32;
+                        scene.positions.extend(positions);
+                        scene
+                            .sources
+                            .extend(local.clone().map(|v| VertexSource::Gltf {
+                                mesh: mesh as u32,
+                                vertex: v as u32,
+                            }));
+                        first
+                    });
+                limits.check_count(
+                    "positions",
+                    scene.positions.len() as u64,
+                    limits.max_positions,
+                )?;
+                for (k, v) in local.enumerate() {
+                    to_scene[v] = first + k as u32;
+                }
                 placement.primitives.push(PrimitivePlacement {
                     first,
                     count,
-                    position_accessor: pos as u32,
+                    position_accessor,
                 });
-                first += count;
+                local_first += count;
             }
-            scene.gltf_meshes.push(placement);
-            scene
-                .sources
-                .extend(
-                    (0..data.positions.len() as u32).map(|vertex| VertexSource::Gltf {
-                        mesh: mesh as u32,
-                        vertex,
-                    }),
-                );
-            scene.positions.extend(&data.positions);
-            limits.check_count(
-                "positions",
-                scene.positions.len() as u64,
-                limits.max_positions,
-            )?;
+            let first_triangle = scene.triangles.len() as u32;
             for (t, m) in data.triangles.iter().zip(&data.triangle_material) {
                 let material = m.map_or_else(String::new, |m| format!("#{m}"));
                 let label = format!("{}/{material}", mesh_labels[mesh]);
-                scene.push_triangle(t.map(|i| i + base), &label, &mut label_index);
+                let t = t.map(|i| to_scene.get(i as usize).copied().unwrap_or(0));
+                scene.push_triangle(t, &label, &mut label_index);
             }
             scene.check_triangles(limits)?;
+            placement.triangles = first_triangle..scene.triangles.len() as u32;
+            scene.gltf_meshes.push(placement);
         }
         Ok(scene)
     }

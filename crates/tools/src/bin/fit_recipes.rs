@@ -97,7 +97,68 @@ fn main() -> anyhow::Result<()> {
         rows.push((e.name, old_field, new_field, capture, recipe));
     }
     print_table(&rows);
+    print_emotions(&fields, &ids, &rows, &dir, n)?;
     print_recipes(&rows);
+    Ok(())
+}
+
+/// The VRM emotions against the sums of ICT captures issue 33 names for them: facebem's preset,
+/// and the sum of the fitted ARKit targets of the same names.
+fn print_emotions(
+    fields: &HashMap<String, Vec<DVec3>>,
+    ids: &[String],
+    rows: &[Row],
+    dir: &Path,
+    n: usize,
+) -> anyhow::Result<()> {
+    const SUMS: [(&str, &[&str]); 3] = [
+        (
+            "happy",
+            &[
+                "mouthSmileLeft",
+                "mouthSmileRight",
+                "cheekSquintLeft",
+                "cheekSquintRight",
+            ],
+        ),
+        (
+            "angry",
+            &[
+                "browDownLeft",
+                "browDownRight",
+                "eyeSquintLeft",
+                "eyeSquintRight",
+                "mouthPressLeft",
+                "mouthPressRight",
+            ],
+        ),
+        ("sad", &["browInnerUp", "mouthFrownLeft", "mouthFrownRight"]),
+    ];
+    println!("\n| VRM | ICT sum | preset cosine | sum of the fitted targets' cosine |");
+    println!("|---|---|---|---|");
+    for (emotion, names) in SUMS {
+        let mut capture = vec![DVec3::ZERO; n];
+        let mut ours = vec![DVec3::ZERO; n];
+        for name in names {
+            let c = captured(dir, name, n)?.ok_or_else(|| anyhow::anyhow!("no {name}"))?;
+            capture.iter_mut().zip(&c).for_each(|(a, b)| *a += *b);
+            let row = rows
+                .iter()
+                .find(|r| r.0 == *name)
+                .ok_or_else(|| anyhow::anyhow!("{name}"))?;
+            ours.iter_mut().zip(&row.2).for_each(|(a, b)| *a += *b);
+        }
+        let preset = facebem::expressions::presets::find(emotion)
+            .ok_or_else(|| anyhow::anyhow!("no preset {emotion}"))?
+            .sliders_for(ids);
+        let preset_field = field_of(fields, ids.iter().cloned().zip(preset));
+        println!(
+            "| {emotion} | {} | {:.2} | {:.2} |",
+            names.join(" + "),
+            cosine(&preset_field, &capture),
+            cosine(&ours, &capture)
+        );
+    }
     Ok(())
 }
 
