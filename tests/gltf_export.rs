@@ -63,12 +63,13 @@ fn check_file(path: &std::path::Path, basis: &MuscleBasis) {
     let mesh = doc.meshes().next().expect("one mesh");
     let names = target_names(&doc);
     // The ARKit and VRM names the two muscles can make come first (ARKit: browDownRight,
-    // browInnerUp, browOuterUpRight, mouthSmileLeft; VRM: the five facebem presets, relaxed and
-    // ih; neutral, the base mesh, is left out), then the muscles' contractions that no named
-    // target already is (none: in this two-muscle rig VRM surprised is frontalis_r contracted)
-    // and the presets that no VRM one is (the other four); every relax is −1 × a written
-    // target and left out.
-    let first_own = 4 + 6;
+    // browInnerUp, browOuterUpRight, mouthSmileLeft; VRM: the facebem presets happy, angry and
+    // surprised, relaxed and ih; neutral, the base mesh, is left out, and sad, which in this
+    // two-muscle rig is browInnerUp's frontalis_r at −0.45), then the muscles' contractions that
+    // no named target already is (none: in this two-muscle rig VRM surprised is frontalis_r
+    // contracted) and the presets that no VRM one is (the other four); every relax is −1 × a
+    // written target and left out.
+    let first_own = 4 + 5;
     assert_eq!(
         names,
         [
@@ -78,7 +79,6 @@ fn check_file(path: &std::path::Path, basis: &MuscleBasis) {
             "mouthSmileLeft",
             "happy",
             "angry",
-            "sad",
             "relaxed",
             "surprised",
             "ih",
@@ -94,6 +94,7 @@ fn check_file(path: &std::path::Path, basis: &MuscleBasis) {
         "mouthSmileLeft"
     );
     assert_eq!(read.extras["sameAs"]["preset_happy"], "happy");
+    assert_eq!(read.extras["sameAs"]["sad"], "browInnerUp");
     assert_eq!(read.extras["sameAs"]["frontalis_r_contract"], "surprised");
     assert_eq!(read.extras["negativeOf"]["frontalis_r_relax"], "surprised");
     assert_eq!(

@@ -331,3 +331,29 @@ fn arkit_raw_names_match_arkits_strings_and_find_the_same_expression() {
         sliders_for_name("mouthSmileLeft", &ten)
     );
 }
+
+/// VRM's `sad` (facebem's preset) is the sum of the fitted ARKit browInnerUp, mouthFrownLeft and
+/// mouthFrownRight (issue 33's ICT sum for it), so a refit that changes those changes it too.
+#[test]
+fn sad_is_the_sum_of_the_fitted_inner_brow_raise_and_frowns() {
+    let mut sum: Vec<(String, f64)> = Vec::new();
+    for name in ["browInnerUp", "mouthFrownLeft", "mouthFrownRight"] {
+        let Definition::Fitted { terms, .. } = find(name).unwrap().definition else {
+            panic!("{name} is fitted");
+        };
+        for (id, v) in terms {
+            match sum.iter_mut().find(|(i, _)| i == id) {
+                Some((_, s)) => *s += v,
+                None => sum.push((id.to_string(), *v)),
+            }
+        }
+    }
+    let sad = crate::expressions::presets::find("sad").unwrap();
+    let preset = sorted_terms(sad.sliders.iter().map(|(id, v)| (id.to_string(), *v)));
+    let sum = sorted_terms(sum.into_iter());
+    assert_eq!(preset.len(), sum.len(), "{preset:?} against {sum:?}");
+    for ((a, x), (b, y)) in preset.iter().zip(&sum) {
+        assert_eq!(a, b);
+        assert!((x - y).abs() < 1e-12, "{a}: {x} against {y}");
+    }
+}
