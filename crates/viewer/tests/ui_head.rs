@@ -168,13 +168,7 @@ type Vertices = [viewer::posed_mesh::MeshVertex];
 /// jawOpen (the jaw slider at −1): the lower teeth move, the upper teeth and the back of the
 /// head do not.
 fn the_jaw_moves_the_lower_teeth_only(harness: &mut App, basis: &MuscleBasis, rest: &Vertices) {
-    // jawOpen (the jaw slider at −1): the lower teeth move, the upper teeth and the back of
-    // the head do not.
-    let jaw = basis
-        .muscle_ids
-        .iter()
-        .position(|id| id == "jaw_open")
-        .unwrap();
+    let jaw = basis.muscle_index("jaw_open").unwrap();
     let mut sliders = vec![0.0; basis.muscle_count()];
     sliders[jaw] = -1.0;
     harness.state_mut().set_sliders(&sliders);
@@ -198,12 +192,7 @@ fn the_jaw_moves_the_lower_teeth_only(harness: &mut App, basis: &MuscleBasis, re
 /// eyeLookUpLeft, picked in the expression browser: the left eyeball turns (moves by
 /// millimetres), nothing of the teeth.
 fn the_gaze_turns_one_eye(harness: &mut App, basis: &MuscleBasis, rest: &Vertices) {
-    // eyeLookUpLeft: the left eyeball turns (moves by millimetres), nothing of the teeth.
-    let up = basis
-        .muscle_ids
-        .iter()
-        .position(|id| id == "eyeLookUpLeft")
-        .unwrap();
+    let up = basis.muscle_index("eyeLookUpLeft").unwrap();
     // Through the expression browser, as a user would pick it: the gaze is available.
     let entries = viewer::app::browser::browser_entries(
         viewer::app::browser::BrowserTab::Arkit,
