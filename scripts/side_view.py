@@ -62,7 +62,7 @@ def view_from_face(v):
 turned = [view_from_face(v) for v in base]
 min_x, max_x = min(v[0] for v in turned), max(v[0] for v in turned)
 min_y, max_y = min(v[1] for v in turned), max(v[1] for v in turned)
-size = 500
+size = int(os.environ.get("SIZE", "500"))
 scale = size * 0.8 / max(max_x - min_x, max_y - min_y)
 meshes = [base] + poses
 img = Image.new('RGB', (size * len(meshes), size), 'white')

@@ -306,8 +306,11 @@ fn build_one_copy(
         mesh,
         &rig,
         &face,
-        simplified.as_ref(),
-        &simulated,
+        crate::settle::Simulation {
+            simplified: simplified.as_ref(),
+            simulated: &simulated,
+            peeled: &peeled_vertices,
+        },
         &muscle_ids,
         &mut displacements,
     );

@@ -3,7 +3,8 @@
 //! with the chin as far (at least 99 %), the eyes and forehead stay within 0.5 mm, the contour above
 //! the jaw stays within 0.5 mm, and triangles flip only at the lips (at most 0.5 % of the
 //! front triangles). On the ICT 13k face the response is compared with the captured jawOpen
-//! (`tests/data/calibration`, MIT).
+//! (`tests/data/calibration`, MIT). The lip seal (issue 33) keeps the lips together over the open
+//! jaw.
 
 mod support;
 
@@ -365,4 +366,90 @@ fn ict_2500_the_neck_stays_while_the_jaw_opens() {
 fn masks_cut_at_the_chin_keep_their_chin_on_the_jaw() {
     the_neck_stays_while_the_jaw_opens(0, false);
     the_neck_stays_while_the_jaw_opens(2, false);
+}
+
+/// The input mouth loop's vertices where it crosses its own vertical centre line (canonical
+/// x = the loop's mean x): the highest crossing (the upper lip's margin) and the lowest.
+fn midline_margins(p: &JawPoints) -> (usize, usize) {
+    let lp = &p.lm.loops.mouth;
+    let x = |i: usize| p.canon[lp[i % lp.len()] as usize].x;
+    let cx = lp.iter().map(|&v| p.canon[v as usize].x).sum::<f64>() / lp.len() as f64;
+    let crossings: Vec<usize> = (0..lp.len())
+        .filter(|&i| (x(i) - cx) * (x(i + 1) - cx) <= 0.0)
+        .map(|i| {
+            let j = if (x(i) - cx).abs() <= (x(i + 1) - cx).abs() {
+                i
+            } else {
+                i + 1
+            };
+            lp[j % lp.len()] as usize
+        })
+        .collect();
+    let y = |v: &usize| p.canon[*v].y;
+    let upper = *crossings
+        .iter()
+        .max_by(|a, b| y(a).total_cmp(&y(b)))
+        .unwrap();
+    let lower = *crossings
+        .iter()
+        .min_by(|a, b| y(a).total_cmp(&y(b)))
+        .unwrap();
+    (upper, lower)
+}
+
+/// Issue 33: `jawOpen` + `mouthClose` (`jaw_open` −1 + `lip_seal` −1) keeps the lips together
+/// over the open jaw, as they meet at rest. `jaw_open` alone opens the mouth loop's midline by
+/// more than 15 mm (measured 18–27 mm); with the seal both midline margins stay within 3 mm of
+/// rest (measured: lower 0.0–1.0 mm, upper 0.6–1.9 mm), the midline gap within 3 mm of its rest
+/// value (measured within 0.9 mm), and the chin
+/// still drops with the jaw (at least 20 mm; the seal takes back nothing 40 mm below the lip).
+fn jaw_open_and_lip_seal_keep_the_lips_together(face: usize) {
+    let m = model(face);
+    let p = points(m);
+    let jaw = field_mm(m, &p, MuscleKind::JawOpen, -1.0);
+    let seal = field_mm(m, &p, MuscleKind::LipSeal, -1.0);
+    let closed: Vec<DVec3> = jaw.iter().zip(&seal).map(|(a, b)| *a + *b).collect();
+    let (u, l) = midline_margins(&p);
+    let opened_mm = (jaw[u] - jaw[l]).y;
+    let gap_change_mm = (closed[u] - closed[l]).y;
+    let (upper_mm, lower_mm) = (closed[u].length(), closed[l].length());
+    eprintln!(
+        "{}: jaw_open opens the midline {opened_mm:.1} mm; with the seal the margins move \
+         {upper_mm:.2} (upper) and {lower_mm:.2} mm (lower), the gap changes {gap_change_mm:.2} \
+         mm, the chin moves {:.1} mm",
+        support::FACES[face],
+        closed[p.chin].length()
+    );
+    assert!(opened_mm > 15.0, "jaw_open opens only {opened_mm:.1} mm");
+    assert!(lower_mm <= 3.0, "the lower margin moves {lower_mm:.2} mm");
+    assert!(upper_mm <= 3.0, "the upper margin moves {upper_mm:.2} mm");
+    assert!(
+        gap_change_mm.abs() <= 3.0,
+        "gap changes {gap_change_mm:.2} mm"
+    );
+    assert!(
+        closed[p.chin].length() >= 20.0,
+        "the chin moves {:.1} mm",
+        closed[p.chin].length()
+    );
+}
+
+#[test]
+fn mediapipe_jaw_open_and_lip_seal_keep_the_lips_together() {
+    jaw_open_and_lip_seal_keep_the_lips_together(0);
+}
+
+#[test]
+fn ict_2500_jaw_open_and_lip_seal_keep_the_lips_together() {
+    jaw_open_and_lip_seal_keep_the_lips_together(1);
+}
+
+#[test]
+fn lee_perry_smith_jaw_open_and_lip_seal_keep_the_lips_together() {
+    jaw_open_and_lip_seal_keep_the_lips_together(2);
+}
+
+#[test]
+fn ict_13k_jaw_open_and_lip_seal_keep_the_lips_together() {
+    jaw_open_and_lip_seal_keep_the_lips_together(3);
 }

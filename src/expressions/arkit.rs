@@ -284,10 +284,11 @@ pub const EXPRESSIONS: [NamedExpression; 43] = [
         "jaw shifted toward the subject's right",
         &[("jaw_lateral", 1.0)],
     ),
-    e(
+    fitted(
         "mouthClose",
         "AU24 (lips together against an open jaw)",
-        "upper lip down, lower lip up and pressed: closes the lips when combined with jawOpen",
+        "lower lip held up against the upper one (lip seal): closes the lips when combined with jawOpen; without the seal, upper lip down and lower lip up",
+        &[("lip_seal", -1.0)],
         &[
             ("levator_labii_superioris_l", 0.4),
             ("levator_labii_superioris_r", 0.4),

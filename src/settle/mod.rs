@@ -13,21 +13,34 @@ use crate::transfer::SimplifiedFace;
 mod lid_closure;
 pub mod untangle;
 
+/// What a face was simulated on: the copy of a large face (`simplified`, with `simulated` its
+/// welded mesh; `None` when the face itself was simulated) and the input vertices peeled off for
+/// the simulation (rolled-in lips, [`crate::copy::rolled_in`]).
+#[derive(Clone, Copy)]
+pub(crate) struct Simulation<'a> {
+    pub(crate) simplified: Option<&'a SimplifiedFace>,
+    pub(crate) simulated: &'a FaceMesh,
+    pub(crate) peeled: &'a [u32],
+}
+
 /// Runs every settling pass on `displacements` (one field per control of `rig`, on `mesh`'s
 /// vertices, named `muscle_ids`), in order: the lips relaxed, squints kept open and blinks
 /// closed, the lids and lips relaxed again, the sphincter's sum, the mid and lower face, the
 /// forehead in both slider directions, the lids and forehead, and the brow lowerers in their
-/// combinations. `simplified` is the copy a large face was simulated on (`simulated` its
-/// welded mesh).
+/// combinations; last, the lip seal made again from the settled jaw.
 pub(crate) fn settle(
     mesh: &FaceMesh,
     rig: &FaceRig,
     face: &CanonicalFace,
-    simplified: Option<&SimplifiedFace>,
-    simulated: &FaceMesh,
+    sim: Simulation<'_>,
     muscle_ids: &[String],
     displacements: &mut [Vec<DVec3>],
 ) {
+    let Simulation {
+        simplified,
+        simulated,
+        peeled,
+    } = sim;
     let anatomical = rig.params.muscle_model == face_prep::muscle_model::MuscleModel::Anatomical;
     if anatomical {
         relax_each(mesh, rig, &untangle_fixed(mesh, rig, face), displacements);
@@ -74,6 +87,46 @@ pub(crate) fn settle(
         displacements,
     );
     relax_brow_lowerers(mesh, rig, face, muscle_ids, displacements);
+    seal_from_settled_jaw(mesh, rig, face, peeled, displacements);
+}
+
+/// The lip seal's field is a share of `jaw_open`'s ([`face_prep::lip_seal`]): made again here
+/// from the settled `jaw_open`, so that the two stay in step where the passes relaxed the jaw
+/// (the seal relaxed on its own would not take back the jaw's relaxed patches: a jagged seam
+/// from the mouth corners across the cheeks on ICT 13k). The rolled-in lips peeled off for the
+/// simulation (`peeled`) take their margins' shares, as their fields hang from the margins
+/// ([`crate::copy::rolled_in::hang_from_margins`]): seen from the front, a lower lip rolled in
+/// lies behind the upper one, where the share by position would leave it with the jaw. Nothing
+/// for a rig without both.
+fn seal_from_settled_jaw(
+    mesh: &FaceMesh,
+    rig: &FaceRig,
+    face: &CanonicalFace,
+    peeled: &[u32],
+    displacements: &mut [Vec<DVec3>],
+) {
+    let (Some(seal), Some(jaw)) = (
+        rig.muscle_index(face_prep::MuscleKind::LipSeal),
+        rig.muscle_index(face_prep::MuscleKind::JawOpen),
+    ) else {
+        return;
+    };
+    let mut shares: Vec<DVec3> = rig
+        .lip_seal_shares(&face.points)
+        .into_iter()
+        .map(DVec3::splat)
+        .collect();
+    crate::copy::rolled_in::hang_from_margins(&mut shares, &mesh.triangles, peeled);
+    let Some(opening) = displacements.get(jaw).cloned() else {
+        return;
+    };
+    if let Some(field) = displacements.get_mut(seal) {
+        *field = opening
+            .iter()
+            .zip(&shares)
+            .map(|(d, w)| -w.x * *d)
+            .collect();
+    }
 }
 
 /// Relaxes every response where it turns triangles over, moving only the vertices not in

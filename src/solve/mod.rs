@@ -101,6 +101,7 @@ pub(crate) fn solve_rig(
     if rig.params.muscle_model == MuscleModel::Anatomical {
         hold_bone_vertices(rig, &mut vertex);
     }
+    lip_seal(rig, &mut element, &mut vertex);
     Ok(Solved {
         element,
         vertex,
@@ -253,6 +254,31 @@ fn scale_force_responses(
         }
     }
     peak_ratio
+}
+
+/// The lip seal's response ([`face_prep::lip_seal`]): at slider +1, `jaw_open`'s response
+/// times minus the seal's share at each element centroid and shell vertex, so `jaw_open` +
+/// `lip_seal` at full value takes the share of the jaw's motion back. Nothing for a rig without
+/// both controls.
+fn lip_seal(rig: &FaceRig, element: &mut [Vec<DVec3>], vertex: &mut [Vec<DVec3>]) {
+    let (Some(seal), Some(jaw)) = (
+        rig.muscle_index(face_prep::MuscleKind::LipSeal),
+        rig.muscle_index(face_prep::MuscleKind::JawOpen),
+    ) else {
+        return;
+    };
+    let centroids: Vec<DVec3> = (0..rig.shell.element_count())
+        .map(|e| rig.shell.centroid(e))
+        .collect();
+    for (fields, points) in [(element, &centroids), (vertex, &rig.shell.vertices)] {
+        let shares = rig.lip_seal_shares(points);
+        let Some(opening) = fields.get(jaw).cloned() else {
+            continue;
+        };
+        if let Some(field) = fields.get_mut(seal) {
+            *field = opening.iter().zip(&shares).map(|(d, &w)| -w * *d).collect();
+        }
+    }
 }
 
 /// Anatomical model: a vertex of a fixed (skull) element is on bone, the outer contour on the

@@ -110,7 +110,11 @@ fn json_reports_parse_and_name_what_was_written() {
     assert_eq!(r["command"], "rig");
     assert_eq!(r["output"], rig_s);
     assert_eq!(r["frontTriangles"], mesh.triangles.len());
-    assert_eq!(r["controls"].as_array().unwrap().len(), 37, "{r}");
+    assert_eq!(
+        r["controls"].as_array().unwrap().len(),
+        face_prep::MuscleKind::ALL.len(),
+        "{r}"
+    );
     assert_eq!(r["untrustworthy"], serde_json::json!([]));
     assert!(r["seconds"]["solve"].as_f64().unwrap() > 0.0);
     assert_eq!(r["unit"], "cm");

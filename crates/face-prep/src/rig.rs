@@ -465,6 +465,24 @@ impl FaceRig {
         }
     }
 
+    /// The share of `jaw_open`'s response the lip seal takes back at each of `points`
+    /// (canonical frame; [`crate::controls::lip_seal`]), in their order.
+    ///
+    /// ```
+    /// use face_prep::{FaceRig, RigParams, load_face};
+    /// let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+    ///     .join("../../assets/mediapipe_canonical_4loop.obj");
+    /// let rig = FaceRig::build(&load_face(&path).unwrap(), &RigParams::default()).unwrap();
+    /// let shares = rig.lip_seal_shares(&rig.shell.vertices);
+    /// assert!(shares.iter().all(|&w| (0.0..=1.0).contains(&w)));
+    /// // The forehead keeps the jaw's (small) motion.
+    /// let top = rig.shell.vertices.iter().map(|p| p.y).fold(f64::MIN, f64::max);
+    /// assert!(rig.shell.vertices.iter().zip(&shares).all(|(p, &w)| p.y < top - 1.0 || w == 0.0));
+    /// ```
+    pub fn lip_seal_shares(&self, points: &[DVec3]) -> Vec<f64> {
+        crate::controls::lip_seal::seal_shares(self.parts(), points)
+    }
+
     /// Every muscle's prescribed pattern at slider = +1 ([`FaceRig::muscle_pattern`]).
     pub fn muscle_patterns(&self) -> Vec<Vec<(u32, DVec3)>> {
         (0..self.muscles.len())

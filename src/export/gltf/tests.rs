@@ -32,7 +32,7 @@ fn bad_inputs_are_typed_errors() {
 
 /// Regression (issue 36, part 7): a 1.18 M-triangle face exported a 2.0 GB GLB using
 /// 6.6 GB of memory. Above [`MAX_EXPORT_BYTES`] the export is refused from the counts,
-/// before any target is built; here 37 muscles' targets (every set, each muscle's field
+/// before any target is built; here every control's target (every set, each muscle's field
 /// its own) over a million glTF vertices (all but three of them positions no face uses, so
 /// the test itself stays small).
 #[test]

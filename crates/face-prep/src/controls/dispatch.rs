@@ -55,6 +55,8 @@ pub(crate) fn place_control(
             lip,
             mm_per_unit,
         ),
+        // The seal's response is a share of jaw_open's ([`crate::controls::lip_seal`]).
+        Generator::Seal => (Vec::new(), Vec::new()),
         Generator::Pressure => (
             Vec::new(),
             place_cheek_puff(shell, skull, &Landmarks::of(boxes)),
@@ -91,6 +93,7 @@ pub(crate) fn control_pattern(rig: RigParts<'_>, muscle: &Muscle) -> Vec<(u32, D
             }
             Some(Generator::Jaw(mode)) => jaw_pattern(rig, mode),
             Some(Generator::Pressure) => cheek_puff_traction(shell, boxes, muscle),
+            Some(Generator::Seal) => Vec::new(),
             Some(Generator::Sphincter(_)) => {
                 sphincter_traction(shell, loops, boxes, mm_per_unit, muscle)
             }

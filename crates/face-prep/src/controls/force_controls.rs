@@ -193,7 +193,7 @@ pub(crate) fn force_target(rig: RigParts<'_>, k: usize) -> Option<f64> {
             Some(SPHINCTER_STRAIN * strength * 0.5 * rig.boxes.mouth.width())
         }
         Generator::Pressure => Some(CHEEK_PUFF_MM * strength / rig.mm_per_unit),
-        Generator::Band(_) | Generator::Jaw(_) | Generator::Lid(_) => None,
+        Generator::Seal | Generator::Band(_) | Generator::Jaw(_) | Generator::Lid(_) => None,
     }
 }
 

@@ -4,7 +4,7 @@
 //! - [`muscle_kind`]: the table of controls, one row each (id, name, side, twin, generator).
 //! - one generator per kind: muscle bands from [`anatomy`] attachments ([`muscle_model`]),
 //!   force-driven bands and the sphincter ([`force_controls`]), the modiolus pins
-//!   ([`modiolus`]), the jaw's rigid modes ([`jaw`]), the lids ([`eyelid`]), the teeth the deep
+//!   ([`modiolus`]), the jaw's rigid modes ([`jaw`]), the lip seal over the open jaw ([`lip_seal`]), the lids ([`eyelid`]), the teeth the deep
 //!   layer slides on ([`teeth`]); the thesis's ten muscles ([`muscles`]) and its muscle file
 //!   format ([`muscle_file`]).
 //! - `dispatch`: the two places a control's generator is dispatched on (its elements, its
@@ -18,6 +18,7 @@ pub mod eyelid;
 pub mod force_controls;
 pub mod ids;
 pub mod jaw;
+pub mod lip_seal;
 pub mod modiolus;
 pub mod muscle_file;
 pub mod muscle_kind;

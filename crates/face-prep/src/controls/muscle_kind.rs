@@ -85,6 +85,10 @@ pub enum Generator {
     /// One half of the orbicularis oris sphincter, force-driven like [`Generator::Force`]: a
     /// ring of tissue around the mouth pulled toward the mouth's centre and forward (pucker).
     Sphincter(Lip),
+    /// The lip seal ([`crate::controls::lip_seal`]): no elements and no load of its own; its
+    /// response is `jaw_open`'s solved response times minus a share that is 1 at the lower lip's
+    /// margin, so added to `jaw_open` it takes the lower lip back up (ARKit's `mouthClose`).
+    Seal,
 }
 
 /// One row of the control table.
@@ -151,7 +155,7 @@ macro_rules! controls {
     };
 }
 
-use Generator::{Band, Force, Jaw, Lid, Pressure, Sphincter};
+use Generator::{Band, Force, Jaw, Lid, Pressure, Seal, Sphincter};
 
 controls! {
     /// Frontalis, face's left.
@@ -273,6 +277,9 @@ controls! {
     /// Buccinator, face's right.
     BuccinatorR = ("buccinator_r", "Buccinator R", Right, BuccinatorL, Anatomical,
         Force(anatomy::buccinator)),
+    /// Lip seal (unpaired): the lower lip held up against the upper one over the open jaw
+    /// (orbicularis oris and mentalis; ARKit's mouthClose, [`crate::controls::lip_seal`]).
+    LipSeal = ("lip_seal", "Lip seal", Center, LipSeal, Anatomical, Seal),
 }
 
 impl MuscleKind {
@@ -346,11 +353,13 @@ impl MuscleKind {
             Generator::Jaw(_)
             | Generator::Pressure
             | Generator::Lid(_)
-            | Generator::Sphincter(_) => None,
+            | Generator::Sphincter(_)
+            | Generator::Seal => None,
         }
     }
 
-    /// Whether this control is force-driven ([`Generator::Force`], [`Generator::Pressure`]):
+    /// Whether this control is force-driven ([`Generator::Force`], [`Generator::Sphincter`],
+    /// [`Generator::Pressure`]):
     /// its elements carry a traction in its own response and are free in every other one
     /// ([`crate::controls::force_controls`]).
     pub fn is_force(self) -> bool {

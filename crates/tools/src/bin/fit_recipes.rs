@@ -20,7 +20,8 @@
 //!   `mouthLeft` may use both sides, `mouthRight` is its mirror.
 //! - The jaw's targets keep their kinematic recipes; the cheek-puff pressure is used only by
 //!   `cheekPuff`; the jaw controls are not used by the other targets (a lip target that opens
-//!   the jaw would double the jaw when added to `jawOpen`).
+//!   the jaw would double the jaw when added to `jawOpen`), nor the lip seal, whose size is the
+//!   jaw's opening (it is `mouthClose`'s recipe).
 //! - Minimised: Σ over the narrow face's vertices of |response − capture|² (mm²), solved by
 //!   projected coordinate descent on the normal equations (a convex box-constrained quadratic,
 //!   so the minimum is unique up to collinear controls), weights then rounded to 0.05 and those
@@ -76,7 +77,12 @@ fn main() -> anyhow::Result<()> {
             .ok_or_else(|| anyhow::anyhow!("no capture of {}", e.name))?;
         let old_field = field_of(&fields, old.iter().map(|(i, v)| (i.to_string(), *v)));
         let recipe = if keeps_its_recipe(e.name) {
-            old.iter().map(|(i, v)| (i.to_string(), *v)).collect()
+            // The recipe a rig with every control uses (mouthClose's is the lip seal).
+            let (Definition::Terms(kept) | Definition::Fitted { terms: kept, .. }) = e.definition
+            else {
+                continue;
+            };
+            kept.iter().map(|(i, v)| (i.to_string(), *v)).collect()
         } else if let Some(left) = mirrored_of(e.name) {
             // The right (or mouthRight) recipe is the mirror of the left one's fit.
             let left_capture =
@@ -163,8 +169,9 @@ fn print_emotions(
 }
 
 /// Targets that keep their hand-made recipes: the jaw's kinematic ones; the blink, which must
-/// close the lid (a weaker fit leaves it open); mouthClose, a corrective over the open jaw that
-/// no combination of muscles at the neutral makes (its captured lower lip rises 38 mm). And
+/// close the lid (a weaker fit leaves it open); mouthClose, the lip seal over the open jaw (a
+/// corrective no combination of muscles at the neutral makes: its captured lower lip rises
+/// 38 mm; `face_prep::lip_seal`). And
 /// those whose fit failed a standing check on another face (measured 2026-11-29, the gain
 /// given up in brackets): browDown (0.52 → 0.54) moves ICT 13k's inner brow 2.96 mm, under
 /// the 3 mm of `tests/face_muscles.rs`; mouthPucker (0.74 → 0.76) narrows Lee Perry-Smith's
@@ -232,7 +239,11 @@ fn field_of(
 
 /// The unknowns of a target: each a list of (control, sign) moved together.
 fn unknowns(ids: &[String], name: &str) -> Vec<Vec<String>> {
-    let usable = |id: &str| !id.starts_with("jaw_") && (id != "cheek_puff" || name == "cheekPuff");
+    // The jaw and the lip seal (a corrective whose size is the jaw's opening) serve only their
+    // own targets, which keep their recipes; the cheek puff only cheekPuff.
+    let usable = |id: &str| {
+        !id.starts_with("jaw_") && id != "lip_seal" && (id != "cheek_puff" || name == "cheekPuff")
+    };
     let sided = name.ends_with("Left");
     let both = name == "mouthLeft";
     let mut out: Vec<Vec<String>> = Vec::new();
