@@ -440,7 +440,7 @@ fn named_targets_flip_at_most_half_a_percent(
         // A corrective is judged in the pose it corrects: ARKit's mouthClose is defined on top
         // of jawOpen, and alone lifts the lower lip through the upper one (ICT-FaceKit's capture
         // of it turns 412 of the narrow face's 13 120 triangles over alone, 150 with jawOpen).
-        let on_jaw = e.name == "mouthClose";
+        let on_jaw = expressions::corrective_base(e.name) == Some("jawOpen");
         let sliders: Vec<f64> = (r.sliders.iter().zip(&jaw))
             .map(|(a, b)| if on_jaw { a + b } else { *a })
             .collect();

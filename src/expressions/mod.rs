@@ -481,3 +481,17 @@ pub fn sliders_for_name(
 
 #[cfg(test)]
 mod tests;
+
+/// The expression a corrective shape is defined over, when `name` is one: ARKit's `mouthClose`
+/// is added to `jawOpen` (the lips together over the open jaw; alone it lifts the lower lip
+/// through the upper one, as ICT-FaceKit's capture of it does). A corrective is drawn and judged
+/// on top of its base; it is exported and posed as it is.
+///
+/// ```
+/// use facebem::expressions::corrective_base;
+/// assert_eq!(corrective_base("mouthClose"), Some("jawOpen"));
+/// assert_eq!(corrective_base("jawOpen"), None);
+/// ```
+pub fn corrective_base(name: &str) -> Option<&'static str> {
+    (name == "mouthClose").then_some("jawOpen")
+}

@@ -196,7 +196,8 @@ pub fn preset_cells(model: &FaceModel) -> Vec<SheetCell> {
 
 /// One cell per named expression of `set` the rig can make ([`expressions::for_rig`]),
 /// captioned with its FACS action units; one made from only some of its controls says
-/// "partial". Names the rig cannot make at all are not drawn.
+/// "partial"; a corrective is drawn over its base ([`expressions::corrective_base`]: mouthClose
+/// over jawOpen). Names the rig cannot make at all are not drawn.
 pub fn named_cells(model: &FaceModel, set: NameSet) -> Vec<SheetCell> {
     let sets = NameSets {
         facebem: false,
@@ -207,12 +208,21 @@ pub fn named_cells(model: &FaceModel, set: NameSet) -> Vec<SheetCell> {
     made.into_iter()
         .map(|m| {
             let e = m.expression;
-            let caption = if m.resolved.missing.is_empty() {
+            let mut caption = if m.resolved.missing.is_empty() {
                 e.action_units().to_string()
             } else {
                 format!("partial: {}", e.action_units())
             };
-            SheetCell::new(e.name, caption, m.resolved.sliders)
+            let mut sliders = m.resolved.sliders;
+            // A corrective is drawn on top of the expression it corrects.
+            let base = expressions::corrective_base(e.name)
+                .and_then(|b| expressions::sliders_for_name(b, model.muscle_ids()).ok());
+            if let (Some(base_name), Some((base, _))) = (expressions::corrective_base(e.name), base)
+            {
+                sliders.iter_mut().zip(base).for_each(|(s, b)| *s += b);
+                caption = format!("{caption}, over {base_name}");
+            }
+            SheetCell::new(e.name, caption, sliders)
         })
         .collect()
 }
