@@ -105,10 +105,7 @@ fn seal_from_settled_jaw(
     peeled: &[u32],
     displacements: &mut [Vec<DVec3>],
 ) {
-    let (Some(seal), Some(jaw)) = (
-        rig.muscle_index(face_prep::MuscleKind::LipSeal),
-        rig.muscle_index(face_prep::MuscleKind::JawOpen),
-    ) else {
+    let Some((seal, jaw)) = rig.lip_seal_controls() else {
         return;
     };
     let mut shares: Vec<DVec3> = rig
@@ -117,16 +114,8 @@ fn seal_from_settled_jaw(
         .map(DVec3::splat)
         .collect();
     crate::copy::rolled_in::hang_from_margins(&mut shares, &mesh.triangles, peeled);
-    let Some(opening) = displacements.get(jaw).cloned() else {
-        return;
-    };
-    if let Some(field) = displacements.get_mut(seal) {
-        *field = opening
-            .iter()
-            .zip(&shares)
-            .map(|(d, w)| -w.x * *d)
-            .collect();
-    }
+    let shares: Vec<f64> = shares.iter().map(|w| w.x).collect();
+    face_prep::lip_seal::take_back(displacements, seal, jaw, &shares);
 }
 
 /// Relaxes every response where it turns triangles over, moving only the vertices not in

@@ -261,24 +261,15 @@ fn scale_force_responses(
 /// `lip_seal` at full value takes the share of the jaw's motion back. Nothing for a rig without
 /// both controls.
 fn lip_seal(rig: &FaceRig, element: &mut [Vec<DVec3>], vertex: &mut [Vec<DVec3>]) {
-    let (Some(seal), Some(jaw)) = (
-        rig.muscle_index(face_prep::MuscleKind::LipSeal),
-        rig.muscle_index(face_prep::MuscleKind::JawOpen),
-    ) else {
+    let Some((seal, jaw)) = rig.lip_seal_controls() else {
         return;
     };
     let centroids: Vec<DVec3> = (0..rig.shell.element_count())
         .map(|e| rig.shell.centroid(e))
         .collect();
-    for (fields, points) in [(element, &centroids), (vertex, &rig.shell.vertices)] {
-        let shares = rig.lip_seal_shares(points);
-        let Some(opening) = fields.get(jaw).cloned() else {
-            continue;
-        };
-        if let Some(field) = fields.get_mut(seal) {
-            *field = opening.iter().zip(&shares).map(|(d, &w)| -w * *d).collect();
-        }
-    }
+    let take_back = face_prep::lip_seal::take_back;
+    take_back(element, seal, jaw, &rig.lip_seal_shares(&centroids));
+    take_back(vertex, seal, jaw, &rig.lip_seal_shares(&rig.shell.vertices));
 }
 
 /// Anatomical model: a vertex of a fixed (skull) element is on bone, the outer contour on the

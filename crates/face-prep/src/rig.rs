@@ -465,6 +465,25 @@ impl FaceRig {
         }
     }
 
+    /// The indices of the lip seal and of `jaw_open` among [`FaceRig::muscles`], when the rig
+    /// has both (the anatomical model; [`crate::controls::lip_seal`]).
+    ///
+    /// ```
+    /// use face_prep::{FaceRig, MuscleKind, RigParams, load_face};
+    /// let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+    ///     .join("../../assets/mediapipe_canonical_4loop.obj");
+    /// let rig = FaceRig::build(&load_face(&path).unwrap(), &RigParams::default()).unwrap();
+    /// let (seal, jaw) = rig.lip_seal_controls().unwrap();
+    /// assert_eq!(rig.muscles[seal].kind, Some(MuscleKind::LipSeal));
+    /// assert_eq!(rig.muscles[jaw].kind, Some(MuscleKind::JawOpen));
+    /// ```
+    pub fn lip_seal_controls(&self) -> Option<(usize, usize)> {
+        Some((
+            self.muscle_index(MuscleKind::LipSeal)?,
+            self.muscle_index(MuscleKind::JawOpen)?,
+        ))
+    }
+
     /// The share of `jaw_open`'s response the lip seal takes back at each of `points`
     /// (canonical frame; [`crate::controls::lip_seal`]), in their order.
     ///

@@ -163,6 +163,25 @@ impl Share {
     }
 }
 
+/// Sets the lip seal's field, `fields[seal]`, to `jaw_open`'s, `fields[jaw]`, times minus
+/// `shares` (one per point of the fields; see the module documentation): at slider +1 the seal
+/// moves each point by `−share × jaw_open`. Nothing when either index is out of range.
+///
+/// ```
+/// use glam::DVec3;
+/// let mut fields = vec![vec![DVec3::Y, DVec3::X], vec![DVec3::ZERO; 2]];
+/// face_prep::lip_seal::take_back(&mut fields, 1, 0, &[1.0, 0.5]);
+/// assert_eq!(fields[1], vec![-DVec3::Y, -0.5 * DVec3::X]);
+/// ```
+pub fn take_back(fields: &mut [Vec<DVec3>], seal: usize, jaw: usize, shares: &[f64]) {
+    let Some(opening) = fields.get(jaw).cloned() else {
+        return;
+    };
+    if let Some(field) = fields.get_mut(seal) {
+        *field = opening.iter().zip(shares).map(|(d, &w)| -w * *d).collect();
+    }
+}
+
 /// The seal's share at each of `points` (canonical frame), in their order: [`seal_weight`],
 /// faded in from the outer contour; all 0 when the mouth loop has no margins
 /// ([`MouthMargins::of`]).
