@@ -215,9 +215,8 @@ pub fn named_cells(model: &FaceModel, set: NameSet) -> Vec<SheetCell> {
             };
             let mut sliders = m.resolved.sliders;
             // A corrective is drawn on top of the expression it corrects.
-            let base = expressions::corrective_base(e.name)
-                .and_then(|b| expressions::sliders_for_name(b, model.muscle_ids()).ok());
-            if let (Some(base_name), Some((base, _))) = (expressions::corrective_base(e.name), base)
+            if let Some(base_name) = expressions::corrective_base(e.name)
+                && let Ok((base, _)) = expressions::sliders_for_name(base_name, model.muscle_ids())
             {
                 sliders.iter_mut().zip(base).for_each(|(s, b)| *s += b);
                 caption = format!("{caption}, over {base_name}");
