@@ -21,7 +21,7 @@ fn narrow_face_recipes_match_the_captures(rows: &[Row]) {
         .collect();
     assert_eq!(narrow.len(), 43);
     let mean = narrow.iter().map(|(_, c)| c).sum::<f64>() / narrow.len() as f64;
-    assert!(mean >= 0.73, "mean cosine {mean}");
+    assert!(mean >= 0.76, "mean cosine {mean}");
     assert!(narrow.iter().all(|&(_, c)| c > 0.0), "{narrow:?}");
     let at_least = |name: &str, bound: f64| {
         let c = row(rows, name).narrow_face.unwrap();
@@ -56,6 +56,12 @@ fn narrow_face_recipes_match_the_captures(rows: &[Row]) {
     at_least("mouthRollUpper", 0.55);
     // The lip seal (before: the muscle recipe, 0.46; now 0.95).
     at_least("mouthClose", 0.9);
+    // The cheek raiser (orbicularis_oculi_malar) and the squint's medial pull (before: 0.45,
+    // 0.57; now 0.80, 0.72).
+    for (stem, bound) in [("cheekSquint", 0.78), ("eyeSquint", 0.7)] {
+        at_least(&format!("{stem}Left"), bound);
+        at_least(&format!("{stem}Right"), bound);
+    }
 }
 
 #[test]
@@ -130,10 +136,11 @@ fn the_whole_head_moves_like_the_captures() {
             right.whole_head
         );
     }
-    // Not yet everywhere (issue 32's note): at most 7 targets lower on the whole head than on
-    // the narrow face by more than 0.05 (6 now: mouthLeft/Right, mouthLowerDown and the rolls,
-    // the lips' inside, scored on the head's mouth socket only), none by more than
-    // 0.1 but the rolls. The rolls' fitted recipes curl the lips on the face (narrow 0.42 /
+    // Not yet everywhere (issue 32's note): at most 8 targets lower on the whole head than on
+    // the narrow face by more than 0.05 (8 now: mouthLeft/Right, mouthLowerDown and the rolls,
+    // the lips' inside, scored on the head's mouth socket only; cheekSquint, which the cheek
+    // raiser lifted on both, the narrow face more: head 0.50 → 0.72, held below), none by more
+    // than 0.1 but the rolls. The rolls' fitted recipes curl the lips on the face (narrow 0.42 /
     // 0.60) more than the socket follows them (head 0.12 / 0.38; before the fit −0.30 / −0.57).
     let worse: Vec<(&str, f64)> = rows
         .iter()
@@ -141,18 +148,21 @@ fn the_whole_head_moves_like_the_captures() {
         .filter(|&(_, d)| d < -0.05)
         .collect();
     eprintln!("lower by more than 0.05: {worse:?}");
-    assert!(worse.len() <= 7, "{worse:?}");
+    assert!(worse.len() <= 8, "{worse:?}");
     let roll = |n: &str| n.starts_with("mouthRoll");
     assert!(
         worse.iter().all(|&(n, d)| d > -0.1 || roll(n) && d > -0.35),
         "{worse:?}"
     );
-    // What the fitted recipes and the lip seal mended holds on the whole head too (before:
-    // 0.00, 0.17, 0.34, −0.30, −0.57, 0.35).
+    // What the fitted recipes, the lip seal and the cheek raiser mended holds on the whole head
+    // too (before: mouthClose 0.35, cheekPuff 0.00, mouthPress 0.17, noseSneer 0.34, the rolls
+    // −0.30 / −0.57; cheekSquint 0.50 and eyeSquint 0.68 before the cheek raiser).
     for (name, bound) in [
         ("mouthClose", 0.85),
         ("cheekPuff", 0.6),
         ("mouthPressLeft", 0.45),
+        ("cheekSquintLeft", 0.68),
+        ("eyeSquintLeft", 0.77),
         ("noseSneerLeft", 0.65),
         ("mouthRollLower", 0.05),
         ("mouthRollUpper", 0.3),

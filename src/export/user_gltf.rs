@@ -19,7 +19,7 @@
 //!   weight 1. VRM 0.x (`VRM`): each `blendShapeMaster` group with the matching `presetName`
 //!   (made when missing) binds the same targets, weight 100.
 
-use glam::{DMat3, DVec3};
+use glam::{DMat3, DQuat, DVec3};
 use serde_json::{Map, Value, json};
 
 use face_prep::parts::Scene;
@@ -171,6 +171,15 @@ pub fn add_targets(
         let with_normals = primitives_with_normals(&root, mesh);
         // Normals go from the world to the mesh's frame by the transpose of its linear part.
         let mesh_from_world_normal = DMat3::from_mat4(placement.world_from_mesh).transpose();
+        // The file's own normals, turned with the surface (its seams and hard edges kept).
+        let file: Vec<Option<Vec<DVec3>>> = by_accessor
+            .iter()
+            .map(|a| {
+                with_normals
+                    .then(|| file_normals(&root, &bin, mesh, a.0, a.1))
+                    .flatten()
+            })
+            .collect();
         for (_, field) in targets {
             let normals = with_normals.then(|| {
                 let moved: Vec<DVec3> = scene
@@ -185,6 +194,7 @@ pub fn add_targets(
                 if let Some(normals) = &normals {
                     let local = normal_deltas(
                         (&neutral_normals, normals),
+                        file[slot].as_deref(),
                         &first,
                         (ranges, &used),
                         *count,
@@ -400,12 +410,15 @@ fn primitives_with_normals(root: &Value, mesh: usize) -> bool {
 }
 
 /// The normal deltas of one target on one `POSITION` accessor of `count` vertices (the
-/// primitives' `ranges` of scene vertices): the unit vertex normal of the moved surface less
-/// the neutral one, each in the mesh's frame, at each vertex's first copy at the same place
-/// (`first`), only where the mesh's triangles use the vertex (`used`). Deltas under
-/// [`NORMAL_DELTA_FLOOR`] are written as zero.
+/// primitives' `ranges` of scene vertices): the turn of the surface's unit vertex normal from
+/// the neutral to the moved one, each in the mesh's frame, at each vertex's first copy at the
+/// same place (`first`), only where the mesh's triangles use the vertex (`used`), applied to
+/// the file's own normal (`file`, by local vertex; its hard edges and seams differ from the
+/// surface's) so that the morphed normal stays a unit vector, or the surface normal's change
+/// where the file has none. Deltas under [`NORMAL_DELTA_FLOOR`] are written as zero.
 fn normal_deltas(
     (neutral, moved): (&[DVec3], &[DVec3]),
+    file: Option<&[DVec3]>,
     first: &[u32],
     (ranges, used): (&[std::ops::Range<usize>], &[bool]),
     count: u32,
@@ -413,19 +426,67 @@ fn normal_deltas(
 ) -> Vec<DVec3> {
     let mut local = vec![DVec3::ZERO; count as usize];
     for r in ranges {
-        for (out, v) in local.iter_mut().zip(r.clone()) {
+        for (i, (out, v)) in local.iter_mut().zip(r.clone()).enumerate() {
             if !used[v] {
                 continue;
             }
             let w = first.get(v).map_or(v, |&f| f as usize);
             let to_mesh = |n: DVec3| (mesh_from_world_normal * n).normalize_or_zero();
-            let d = to_mesh(moved[w]) - to_mesh(neutral[w]);
+            let (from, to) = (to_mesh(neutral[w]), to_mesh(moved[w]));
+            let own = file.and_then(|f| f.get(i)).copied().unwrap_or(DVec3::ZERO);
+            let d = if own != DVec3::ZERO && from != DVec3::ZERO && to != DVec3::ZERO {
+                DQuat::from_rotation_arc(from, to) * own - own
+            } else {
+                to - from
+            };
             if d.length() >= NORMAL_DELTA_FLOOR && d.length_squared() > out.length_squared() {
                 *out = d;
             }
         }
     }
     local
+}
+
+/// The unit `NORMAL`s of the first primitive of `mesh` on `position_accessor` (mesh frame), read
+/// from the GLB's own chunk `bin`; `None` unless it is a plain float VEC3 accessor of `count`
+/// vectors inside its buffer view (not sparse, not quantized): the deltas then keep the
+/// surface normal's change. A zero normal reads as zero.
+fn file_normals(
+    root: &Value,
+    bin: &[u8],
+    mesh: usize,
+    position_accessor: u32,
+    count: u32,
+) -> Option<Vec<DVec3>> {
+    let primitive = root["meshes"][mesh]["primitives"]
+        .as_array()?
+        .iter()
+        .find(|p| p["attributes"]["POSITION"].as_u64() == Some(u64::from(position_accessor)))?;
+    let a =
+        &root["accessors"][usize::try_from(primitive["attributes"]["NORMAL"].as_u64()?).ok()?];
+    let plain = a["componentType"].as_u64() == Some(5126)
+        && a["type"].as_str() == Some("VEC3")
+        && a.get("sparse").is_none()
+        && a["count"].as_u64() == Some(u64::from(count));
+    let view = &root["bufferViews"][usize::try_from(a["bufferView"].as_u64()?).ok()?];
+    if !plain || view["buffer"].as_u64().unwrap_or(0) != 0 {
+        return None;
+    }
+    let offset = |v: &Value| usize::try_from(v["byteOffset"].as_u64().unwrap_or(0)).ok();
+    let stride = usize::try_from(view["byteStride"].as_u64().unwrap_or(12)).ok()?;
+    let start = offset(view)?.checked_add(offset(a)?)?;
+    let end = offset(view)?.checked_add(usize::try_from(view["byteLength"].as_u64()?).ok()?)?;
+    if stride < 12 || end > bin.len() {
+        return None;
+    }
+    (0..count as usize)
+        .map(|i| {
+            let at = start.checked_add(i.checked_mul(stride)?)?;
+            let b = bin.get(at..at.checked_add(12).filter(|&e| e <= end)?)?;
+            let f = |k: usize| f64::from(f32::from_le_bytes([b[k], b[k + 1], b[k + 2], b[k + 3]]));
+            Some(DVec3::new(f(0), f(4), f(8)).normalize_or_zero())
+        })
+        .collect()
 }
 
 /// Binds the VRM expressions (1.0 or 0.x) to the added targets; returns the names bound.

@@ -15,74 +15,72 @@ pub(super) const BROW_OUTER_UP_LEFT: &[(&str, f64)] = &[
     ("frontalis_l", -0.95),
     ("levator_palpebrae_l", -0.50),
     ("corrugator_supercilii_l", -0.20),
-    ("orbicularis_oculi_orbital_l", -0.10),
 ];
 /// `browOuterUpRight`.
 pub(super) const BROW_OUTER_UP_RIGHT: &[(&str, f64)] = &[
     ("frontalis_r", -0.95),
     ("levator_palpebrae_r", -0.50),
     ("corrugator_supercilii_r", -0.20),
-    ("orbicularis_oculi_orbital_r", -0.10),
 ];
 /// `cheekPuff`.
 pub(super) const CHEEK_PUFF: &[(&str, f64)] = &[
     ("cheek_puff", -1.00),
     ("orbicularis_oris_upper", -1.00),
-    ("orbicularis_oris_lower", -0.85),
-    ("zygomaticus_minor_l", -0.80),
-    ("zygomaticus_minor_r", -0.80),
+    ("orbicularis_oculi_malar_l", -0.80),
+    ("orbicularis_oculi_malar_r", -0.80),
+    ("orbicularis_oris_lower", -0.80),
     ("mentalis_l", -0.70),
     ("mentalis_r", -0.70),
-    ("orbicularis_oculi_orbital_l", -0.35),
-    ("orbicularis_oculi_orbital_r", -0.35),
+    ("zygomaticus_minor_l", -0.60),
+    ("zygomaticus_minor_r", -0.60),
+    ("orbicularis_oculi_orbital_l", -0.10),
+    ("orbicularis_oculi_orbital_r", -0.10),
 ];
 /// `cheekSquintLeft`.
 pub(super) const CHEEK_SQUINT_LEFT: &[(&str, f64)] = &[
-    ("orbicularis_oculi_orbital_l", -1.00),
-    ("levator_anguli_oris_l", -0.40),
-    ("depressor_anguli_oris_l", -0.30),
-    ("zygomaticus_minor_l", -0.15),
-    ("corrugator_supercilii_l", -0.10),
-    ("orbicularis_oculi_palpebral_l", -0.10),
-    ("procerus", -0.10),
+    ("orbicularis_oculi_malar_l", -1.00),
+    ("orbicularis_oculi_orbital_l", -0.85),
+    ("depressor_anguli_oris_l", -0.40),
+    ("levator_anguli_oris_l", -0.35),
+    ("procerus", -0.15),
 ];
 /// `cheekSquintRight`.
 pub(super) const CHEEK_SQUINT_RIGHT: &[(&str, f64)] = &[
-    ("orbicularis_oculi_orbital_r", -1.00),
-    ("levator_anguli_oris_r", -0.40),
-    ("depressor_anguli_oris_r", -0.30),
-    ("zygomaticus_minor_r", -0.15),
-    ("corrugator_supercilii_r", -0.10),
-    ("orbicularis_oculi_palpebral_r", -0.10),
-    ("procerus", -0.10),
+    ("orbicularis_oculi_malar_r", -1.00),
+    ("orbicularis_oculi_orbital_r", -0.85),
+    ("depressor_anguli_oris_r", -0.40),
+    ("levator_anguli_oris_r", -0.35),
+    ("procerus", -0.15),
 ];
 /// `eyeSquintLeft`.
-pub(super) const EYE_SQUINT_LEFT: &[(&str, f64)] = &[("orbicularis_oculi_orbital_l", -0.90)];
+pub(super) const EYE_SQUINT_LEFT: &[(&str, f64)] = &[
+    ("orbicularis_oculi_orbital_l", -1.00),
+    ("orbicularis_oculi_malar_l", -0.10),
+];
 /// `eyeSquintRight`.
-pub(super) const EYE_SQUINT_RIGHT: &[(&str, f64)] = &[("orbicularis_oculi_orbital_r", -0.90)];
+pub(super) const EYE_SQUINT_RIGHT: &[(&str, f64)] = &[
+    ("orbicularis_oculi_orbital_r", -1.00),
+    ("orbicularis_oculi_malar_r", -0.10),
+];
 /// `eyeWideLeft`.
-pub(super) const EYE_WIDE_LEFT: &[(&str, f64)] = &[
-    ("levator_palpebrae_l", -1.00),
-    ("orbicularis_oculi_orbital_l", -0.10),
-];
+pub(super) const EYE_WIDE_LEFT: &[(&str, f64)] = &[("levator_palpebrae_l", -1.00)];
 /// `eyeWideRight`.
-pub(super) const EYE_WIDE_RIGHT: &[(&str, f64)] = &[
-    ("levator_palpebrae_r", -1.00),
-    ("orbicularis_oculi_orbital_r", -0.10),
-];
+pub(super) const EYE_WIDE_RIGHT: &[(&str, f64)] = &[("levator_palpebrae_r", -1.00)];
 /// `mouthDimpleLeft`.
 pub(super) const MOUTH_DIMPLE_LEFT: &[(&str, f64)] = &[
     ("levator_anguli_oris_l", -1.00),
     ("mentalis_l", -0.80),
-    ("buccinator_l", -0.60),
-    ("depressor_anguli_oris_l", -0.50),
+    ("buccinator_l", -0.55),
+    ("depressor_anguli_oris_l", -0.55),
+    ("orbicularis_oculi_malar_l", -0.25),
 ];
 /// `mouthDimpleRight`.
 pub(super) const MOUTH_DIMPLE_RIGHT: &[(&str, f64)] = &[
     ("levator_anguli_oris_r", -1.00),
     ("mentalis_r", -0.80),
-    ("buccinator_r", -0.60),
-    ("depressor_anguli_oris_r", -0.50),
+    ("buccinator_r", -0.55),
+    ("depressor_anguli_oris_r", -0.55),
+    ("orbicularis_oculi_malar_r", -0.25),
 ];
 /// `mouthFrownLeft`.
 pub(super) const MOUTH_FROWN_LEFT: &[(&str, f64)] =
@@ -95,11 +93,13 @@ pub(super) const MOUTH_FUNNEL: &[(&str, f64)] = &[
     ("depressor_labii_inferioris_l", -1.00),
     ("depressor_labii_inferioris_r", -1.00),
     ("orbicularis_oris_upper", -1.00),
-    ("zygomaticus_minor_l", -0.55),
-    ("zygomaticus_minor_r", -0.55),
     ("levator_labii_superioris_alaeque_nasi_l", -0.50),
     ("levator_labii_superioris_alaeque_nasi_r", -0.50),
-    ("orbicularis_oris_lower", -0.50),
+    ("zygomaticus_minor_l", -0.50),
+    ("zygomaticus_minor_r", -0.50),
+    ("orbicularis_oris_lower", -0.45),
+    ("orbicularis_oculi_malar_l", -0.20),
+    ("orbicularis_oculi_malar_r", -0.20),
 ];
 /// `mouthLowerDownLeft`.
 pub(super) const MOUTH_LOWER_DOWN_LEFT: &[(&str, f64)] = &[
@@ -112,11 +112,17 @@ pub(super) const MOUTH_LOWER_DOWN_RIGHT: &[(&str, f64)] = &[
     ("depressor_anguli_oris_r", -0.10),
 ];
 /// `mouthPressLeft`.
-pub(super) const MOUTH_PRESS_LEFT: &[(&str, f64)] =
-    &[("mentalis_l", -1.00), ("levator_anguli_oris_l", -0.25)];
+pub(super) const MOUTH_PRESS_LEFT: &[(&str, f64)] = &[
+    ("mentalis_l", -1.00),
+    ("levator_anguli_oris_l", -0.25),
+    ("orbicularis_oculi_malar_l", -0.20),
+];
 /// `mouthPressRight`.
-pub(super) const MOUTH_PRESS_RIGHT: &[(&str, f64)] =
-    &[("mentalis_r", -1.00), ("levator_anguli_oris_r", -0.25)];
+pub(super) const MOUTH_PRESS_RIGHT: &[(&str, f64)] = &[
+    ("mentalis_r", -1.00),
+    ("levator_anguli_oris_r", -0.25),
+    ("orbicularis_oculi_malar_r", -0.20),
+];
 /// `mouthRollLower`.
 pub(super) const MOUTH_ROLL_LOWER: &[(&str, f64)] = &[
     ("depressor_anguli_oris_l", -1.00),
@@ -132,6 +138,8 @@ pub(super) const MOUTH_ROLL_LOWER: &[(&str, f64)] = &[
     ("buccinator_r", -0.30),
     ("zygomaticus_minor_l", -0.30),
     ("zygomaticus_minor_r", -0.30),
+    ("orbicularis_oculi_malar_l", -0.10),
+    ("orbicularis_oculi_malar_r", -0.10),
 ];
 /// `mouthRollUpper`.
 pub(super) const MOUTH_ROLL_UPPER: &[(&str, f64)] = &[
@@ -171,74 +179,76 @@ pub(super) const MOUTH_SMILE_LEFT: &[(&str, f64)] = &[
     ("buccinator_l", -1.00),
     ("levator_anguli_oris_l", -1.00),
     ("mentalis_l", -1.00),
-    ("orbicularis_oculi_orbital_l", -0.50),
+    ("orbicularis_oculi_malar_l", -1.00),
+    ("risorius_l", -0.50),
     ("levator_labii_superioris_l", -0.45),
-    ("zygomaticus_major_l", -0.40),
-    ("risorius_l", -0.30),
+    ("zygomaticus_major_l", -0.30),
+    ("orbicularis_oculi_orbital_l", -0.20),
 ];
 /// `mouthSmileRight`.
 pub(super) const MOUTH_SMILE_RIGHT: &[(&str, f64)] = &[
     ("buccinator_r", -1.00),
     ("levator_anguli_oris_r", -1.00),
     ("mentalis_r", -1.00),
-    ("orbicularis_oculi_orbital_r", -0.50),
+    ("orbicularis_oculi_malar_r", -1.00),
+    ("risorius_r", -0.50),
     ("levator_labii_superioris_r", -0.45),
-    ("zygomaticus_major_r", -0.40),
-    ("risorius_r", -0.30),
+    ("zygomaticus_major_r", -0.30),
+    ("orbicularis_oculi_orbital_r", -0.20),
 ];
 /// `mouthStretchLeft`.
 pub(super) const MOUTH_STRETCH_LEFT: &[(&str, f64)] = &[
     ("depressor_anguli_oris_l", -0.90),
-    ("mentalis_l", -0.65),
-    ("zygomaticus_major_l", -0.40),
-    ("risorius_l", -0.20),
-    ("buccinator_l", -0.10),
-    ("levator_anguli_oris_l", -0.10),
+    ("mentalis_l", -0.70),
+    ("zygomaticus_major_l", -0.45),
+    ("risorius_l", -0.25),
+    ("orbicularis_oculi_malar_l", -0.20),
 ];
 /// `mouthStretchRight`.
 pub(super) const MOUTH_STRETCH_RIGHT: &[(&str, f64)] = &[
     ("depressor_anguli_oris_r", -0.90),
-    ("mentalis_r", -0.65),
-    ("zygomaticus_major_r", -0.40),
-    ("risorius_r", -0.20),
-    ("buccinator_r", -0.10),
-    ("levator_anguli_oris_r", -0.10),
+    ("mentalis_r", -0.70),
+    ("zygomaticus_major_r", -0.45),
+    ("risorius_r", -0.25),
+    ("orbicularis_oculi_malar_r", -0.20),
 ];
 /// `mouthUpperUpLeft`.
 pub(super) const MOUTH_UPPER_UP_LEFT: &[(&str, f64)] = &[
     ("levator_labii_superioris_l", -1.00),
-    ("levator_anguli_oris_l", -0.65),
-    ("orbicularis_oculi_orbital_l", -0.30),
-    ("levator_labii_superioris_alaeque_nasi_l", -0.20),
-    ("zygomaticus_minor_l", -0.20),
+    ("levator_anguli_oris_l", -0.60),
+    ("orbicularis_oculi_malar_l", -0.50),
+    ("levator_labii_superioris_alaeque_nasi_l", -0.25),
+    ("orbicularis_oculi_orbital_l", -0.20),
     ("mentalis_l", -0.10),
 ];
 /// `mouthUpperUpRight`.
 pub(super) const MOUTH_UPPER_UP_RIGHT: &[(&str, f64)] = &[
     ("levator_labii_superioris_r", -1.00),
-    ("levator_anguli_oris_r", -0.65),
-    ("orbicularis_oculi_orbital_r", -0.30),
-    ("levator_labii_superioris_alaeque_nasi_r", -0.20),
-    ("zygomaticus_minor_r", -0.20),
+    ("levator_anguli_oris_r", -0.60),
+    ("orbicularis_oculi_malar_r", -0.50),
+    ("levator_labii_superioris_alaeque_nasi_r", -0.25),
+    ("orbicularis_oculi_orbital_r", -0.20),
     ("mentalis_r", -0.10),
 ];
 /// `noseSneerLeft`.
 pub(super) const NOSE_SNEER_LEFT: &[(&str, f64)] = &[
-    ("levator_anguli_oris_l", -1.00),
     ("levator_labii_superioris_l", -1.00),
-    ("orbicularis_oculi_orbital_l", -1.00),
+    ("orbicularis_oculi_malar_l", -1.00),
+    ("orbicularis_oculi_orbital_l", -0.85),
+    ("levator_anguli_oris_l", -0.75),
     ("procerus", -0.60),
     ("corrugator_supercilii_l", -0.55),
-    ("mentalis_l", -0.25),
+    ("mentalis_l", -0.30),
     ("levator_labii_superioris_alaeque_nasi_l", -0.20),
 ];
 /// `noseSneerRight`.
 pub(super) const NOSE_SNEER_RIGHT: &[(&str, f64)] = &[
-    ("levator_anguli_oris_r", -1.00),
     ("levator_labii_superioris_r", -1.00),
-    ("orbicularis_oculi_orbital_r", -1.00),
+    ("orbicularis_oculi_malar_r", -1.00),
+    ("orbicularis_oculi_orbital_r", -0.85),
+    ("levator_anguli_oris_r", -0.75),
     ("procerus", -0.60),
     ("corrugator_supercilii_r", -0.55),
-    ("mentalis_r", -0.25),
+    ("mentalis_r", -0.30),
     ("levator_labii_superioris_alaeque_nasi_r", -0.20),
 ];

@@ -297,3 +297,22 @@ pub(crate) fn buccinator(l: &Landmarks) -> Attachment {
         spread_mm: 0.0,
     }
 }
+
+/// Orbicularis oculi, orbital part over the malar cheek (face's left): its lower fibres run
+/// round the orbit over the zygoma from the medial palpebral ligament and spread onto the
+/// cheek; contracting, they draw the malar skin and fat up toward the orbit (AU6, the cheek
+/// raiser; Gray's Anatomy, 41st ed., ch. 29; Ekman & Friesen, FACS manual, AU6). Modelled as a
+/// force-driven pull from the malar skin, 0.5 h below the eye line, toward the lateral
+/// infraorbital margin, over a band 22 mm either side (the malar eminence); the shortening
+/// 0.22 of its length moves the cheek about 7 mm (ICT-FaceKit's captured cheekSquint: 6.3 mm,
+/// up and a little forward, over x 26–70 mm, y 45 mm below to 7 mm above the eye centre).
+pub(crate) fn orbicularis_oculi_malar(l: &Landmarks) -> Attachment {
+    let eye = left_eye(l);
+    Attachment {
+        origin: DVec2::new(eye.x + 0.2 * l.iod, eye.y - 0.05 * l.iod),
+        insertion: DVec2::new(eye.x + 0.3 * l.iod, eye.y - 0.5 * l.h),
+        half_width_mm: 22.0,
+        max_strain: 0.22,
+        spread_mm: 0.0,
+    }
+}

@@ -280,6 +280,13 @@ controls! {
     /// Lip seal (unpaired): the lower lip held up against the upper one over the open jaw
     /// (orbicularis oris and mentalis; ARKit's mouthClose, [`crate::controls::lip_seal`]).
     LipSeal = ("lip_seal", "Lip seal", Center, LipSeal, Anatomical, Seal),
+    /// Orbicularis oculi, orbital part over the malar cheek, face's left: the cheek raiser
+    /// (AU6; the malar skin drawn up toward the orbit).
+    OrbicularisOculiMalarL = ("orbicularis_oculi_malar_l", "Orbicularis oculi (malar) L", Left,
+        OrbicularisOculiMalarR, Anatomical, Force(anatomy::orbicularis_oculi_malar)),
+    /// Orbicularis oculi, orbital part over the malar cheek, face's right.
+    OrbicularisOculiMalarR = ("orbicularis_oculi_malar_r", "Orbicularis oculi (malar) R", Right,
+        OrbicularisOculiMalarL, Anatomical, Force(anatomy::orbicularis_oculi_malar)),
 }
 
 impl MuscleKind {

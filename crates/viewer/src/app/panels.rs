@@ -62,7 +62,7 @@ impl ViewerApp {
         }
         let mut changed = false;
         let mut preset_clicked = None;
-        // The anatomical rig has 38 controls: their sliders scroll in a box about a dozen high,
+        // The anatomical rig has 40 controls: their sliders scroll in a box about a dozen high,
         // so the presets and the panels below stay in reach.
         egui::ScrollArea::vertical()
             .id_salt("muscle_sliders")

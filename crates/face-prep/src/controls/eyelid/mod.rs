@@ -8,7 +8,7 @@
 //! | control | action (slider −1) | prescribed band | anatomy |
 //! |---|---|---|---|
 //! | `orbicularis_oculi_palpebral_l/_r` | **blink** (FACS AU45): each upper-margin point moves onto the lower-margin point of the same parameter along the corner-to-corner chord ([`EyeMargins`]); the lower lid slides nasally by [`BLINK_NASAL_FRACTION`] of the opening | upper lid: full motion up to [`UPPER_LID_CORE_MM`] above the margin, fading to 0 at [`UPPER_LID_BAND_MM`]; lower lid: the nasal slide, fading to 0 at [`LOWER_LID_BAND_MM`] | palpebral part: fibres in the lids from the medial palpebral ligament to the lateral palpebral raphe; it closes the lids gently (Gray's Anatomy, 41st ed., ch. 29; Parke & Waters, *Computer Facial Animation*, 2nd ed., ch. 3); the lower lid moves nasally in a blink (Doane, Am J Ophthalmol 89, 1980) |
-//! | `orbicularis_oculi_orbital_l/_r` | **squint** (AU6/AU7): the lower margin rises straight up by [`SQUINT_RISE_FRACTION`] of the opening, the cheek below it less | lower lid and the cheek over the infraorbital margin, full motion up to [`SQUINT_CORE_MM`] below the margin, fading to 0 at [`SQUINT_BAND_MM`] | orbital part: a sphincter from the medial orbital margin round the orbit; it draws the cheek and lower-lid skin up toward the eye (Gray's ch. 29; Parke & Waters ch. 3; Ekman & Friesen, FACS manual, AU6) |
+//! | `orbicularis_oculi_orbital_l/_r` | **squint** (AU7, the lid tightener): the lower margin rises by [`SQUINT_RISE_FRACTION`] of the opening and is drawn toward the medial corner by [`SQUINT_MEDIAL_RATIO`] of that rise (tapered toward the corners like the blink's slide), the cheek below it less | lower lid and the cheek over the infraorbital margin, full motion up to [`SQUINT_CORE_MM`] below the margin, fading to 0 at [`SQUINT_BAND_MM`] | orbital part: a sphincter from the medial orbital margin round the orbit; it draws the lower-lid skin up and toward the medial angle (Gray's ch. 29; Parke & Waters ch. 3; Ekman & Friesen, FACS manual, AU7; the same ring's part over the malar cheek, which raises the cheek (AU6), is the force-driven `orbicularis_oculi_malar_l/_r`) |
 //! | `levator_palpebrae_l/_r` | **wide** (AU5): the upper margin rises straight up by [`WIDE_RAISE_FRACTION`] of the opening | the upper-lid band of the blink | levator palpebrae superioris: from the lesser wing of the sphenoid to the upper tarsal plate and the skin of the upper lid (Gray's ch. 29/32; Parke & Waters ch. 3) |
 //!
 //! Slider convention as for every muscle: −1 is the action, +1 the linear opposite (the
@@ -57,8 +57,18 @@ pub const SQUINT_RISE_FRACTION: f64 = 0.35;
 /// Depth below the lower margin, mm, that rises fully in a squint.
 pub const SQUINT_CORE_MM: f64 = 3.0;
 /// Depth below the lower margin, mm, where a squint's prescribed rise has faded to 0: the lower
-/// lid and the cheek over the infraorbital margin.
-pub const SQUINT_BAND_MM: f64 = 14.0;
+/// lid (its tarsal plate is 4–5 mm tall), as deep as the blink's band ([`LOWER_LID_BAND_MM`]).
+/// A prescribed band is held at zero in every other response: at 14 mm it pinned the cheek
+/// under the eye that the cheek raiser (`orbicularis_oculi_malar_l/_r`) and the smiles lift,
+/// and the skin creased along its edge; the cheek below the lid now follows the squint
+/// through the elastic solve.
+pub const SQUINT_BAND_MM: f64 = 7.0;
+/// Medial pull of a squint relative to its rise: the orbital fibres draw the lower lid toward
+/// the medial palpebral ligament, where they arise (Gray's Anatomy, 41st ed., ch. 29).
+/// ICT-FaceKit's captured eyeSquint moves the lower lid up and in at about 45° (its peak:
+/// 0.72 medial, 0.69 up); 0.8 was set once against that capture (`fit_recipes`: eyeSquint
+/// 0.57 → 0.71 with the refitted weights).
+pub const SQUINT_MEDIAL_RATIO: f64 = 0.8;
 /// Rise (straight up) of the upper margin when the eye opens wide, fraction of the vertical
 /// opening (AU5 shows the sclera above the iris: 2–3 mm on a 10 mm opening).
 pub const WIDE_RAISE_FRACTION: f64 = 0.3;
@@ -76,6 +86,12 @@ pub(crate) fn lid_weight(distance: f64, core: f64, band: f64) -> f64 {
     } else {
         0.5 * (1.0 + (std::f64::consts::PI * (distance - core) / (band - core)).cos())
     }
+}
+
+/// sin²(π t): 1 at the middle of a margin (`t` = 0.5), 0 at the corners, where a slide along
+/// the margin folded it (the blink's nasal slide, the squint's medial pull).
+fn corner_taper(t: f64) -> f64 {
+    (std::f64::consts::PI * t.clamp(0.0, 1.0)).sin().powi(2)
 }
 
 /// One eye's lid geometry on a rig's shell: the margins of its eye loop, measured on the shell's
@@ -129,7 +145,10 @@ impl<'a> EyeLids<'a> {
             }
             (LidAction::Squint, Lid::Lower) => {
                 let w = lid_weight(d_mm, SQUINT_CORE_MM, SQUINT_BAND_MM);
-                (w > 0.0).then(|| self.rise(t, SQUINT_RISE_FRACTION * w))
+                (w > 0.0).then(|| {
+                    let up = self.rise(t, SQUINT_RISE_FRACTION * w);
+                    up + self.medial_dir() * (SQUINT_MEDIAL_RATIO * up.length() * corner_taper(t))
+                })
             }
             (LidAction::Wide, Lid::Upper) => {
                 let w = lid_weight(d_mm, UPPER_LID_CORE_MM, UPPER_LID_BAND_MM);
@@ -146,11 +165,15 @@ impl<'a> EyeLids<'a> {
     /// (which stay; a slide up to them folded the margin there), and small on an eye that is
     /// nearly shut already.
     pub fn nasal_slide(&self, t: f64) -> DVec3 {
+        let opening = self.margins.opening(self.positions, t).length();
+        self.medial_dir() * (BLINK_NASAL_FRACTION * opening * corner_taper(t))
+    }
+
+    /// Unit vector from the lateral corner to the medial one.
+    fn medial_dir(&self) -> DVec3 {
         let p = self.positions;
         let m = &self.margins;
-        let medial_dir = (p[m.medial as usize] - p[m.lateral as usize]).normalize_or_zero();
-        let taper = (std::f64::consts::PI * t.clamp(0.0, 1.0)).sin().powi(2);
-        medial_dir * (BLINK_NASAL_FRACTION * m.opening(p, t).length() * taper)
+        (p[m.medial as usize] - p[m.lateral as usize]).normalize_or_zero()
     }
 
     /// Upward rise (canonical +y) of `fraction` of the vertical opening at `t`.
@@ -321,6 +344,12 @@ mod tests {
             .action_at(LidAction::Squint, DVec3::new(32.0, -6.0, 0.0))
             .unwrap();
         assert!((s.y - SQUINT_RISE_FRACTION * 10.0).abs() < 0.1, "{s:?}");
+        // ... and toward the medial corner (−x for the face's left eye), by at most
+        // SQUINT_MEDIAL_RATIO of the rise (less toward the corners).
+        assert!(
+            s.x < -0.1 * s.y && -s.x <= SQUINT_MEDIAL_RATIO * s.y + 1e-9,
+            "{s:?}"
+        );
         assert!(
             lids.action_at(LidAction::Squint, DVec3::new(32.0, 6.0, 0.0))
                 .is_none()
