@@ -7,7 +7,8 @@ Needs python3-pil; no GPU.
 
 NEUTRAL must be the ICT narrow face (assets/ict_narrow_face_4loop.obj, whose vertices are the
 first ones of ICT's head), POSED a `facebem pose` of it, CAPTURE a file name of
-tests/data/calibration/ict_head_deltas without `.txt` (e.g. cheekSquint_L). MM_PER_UNIT: 10
+tests/data/calibration/ict_head_deltas without `.txt` (e.g. cheekSquint_L; several joined by
+`+` are summed, as ARKit's browInnerUp is ICT's browInnerUp_L+browInnerUp_R). MM_PER_UNIT: 10
 (ICT is in cm)."""
 import math
 import os
@@ -32,14 +33,15 @@ def main():
     n = len(v)
     ours = [tuple((p[i][k] - v[i][k]) * mm for k in range(3)) for i in range(n)]
     cap = [(0.0, 0.0, 0.0)] * n
-    path = os.path.join(ROOT, 'tests/data/calibration/ict_head_deltas', capture + '.txt')
-    for line in open(path):
-        if line.startswith('#'):
-            continue
-        s = line.split()
-        i = int(s[0])
-        if i < n:
-            cap[i] = tuple(float(x) for x in s[1:4])
+    for part in capture.split('+'):
+        path = os.path.join(ROOT, 'tests/data/calibration/ict_head_deltas', part + '.txt')
+        for line in open(path):
+            if line.startswith('#'):
+                continue
+            s = line.split()
+            i = int(s[0])
+            if i < n:
+                cap[i] = tuple(c + float(x) for c, x in zip(cap[i], s[1:4]))
     size = lambda d: math.sqrt(sum(c * c for c in d))
     peak = max(max(map(size, cap)), max(map(size, ours)))
     w = 500
