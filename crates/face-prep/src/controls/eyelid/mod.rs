@@ -67,7 +67,7 @@ pub const SQUINT_BAND_MM: f64 = 7.0;
 /// the medial palpebral ligament, where they arise (Gray's Anatomy, 41st ed., ch. 29).
 /// ICT-FaceKit's captured eyeSquint moves the lower lid up and in at about 45° (its peak:
 /// 0.72 medial, 0.69 up); 0.8 was set once against that capture (`fit_recipes`: eyeSquint
-/// 0.57 → 0.71 with the refitted weights).
+/// 0.57 → 0.72 with the refitted weights and the 7 mm band).
 pub const SQUINT_MEDIAL_RATIO: f64 = 0.8;
 /// Rise (straight up) of the upper margin when the eye opens wide, fraction of the vertical
 /// opening (AU5 shows the sclera above the iris: 2–3 mm on a 10 mm opening).
