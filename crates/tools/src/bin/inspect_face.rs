@@ -136,6 +136,56 @@ fn print_copy_health(prepared: &facebem::PreparedRig) {
         })
         .fold(f64::INFINITY, f64::min);
     println!("worst front triangle 2*area/longest^2 = {worst:.2e}");
+    print_short_edges(&prepared.simulated);
+}
+
+/// The copy's eight shortest edges against its median edge, and whether their ends lie on a
+/// contour (a short edge at a knife edge gives a small back element against the front).
+fn print_short_edges(sim: &face_prep::FaceMesh) {
+    let mut edges: Vec<(f64, u32, u32)> = Vec::new();
+    for t in &sim.triangles {
+        for k in 0..3 {
+            let (a, b) = (t[k], t[(k + 1) % 3]);
+            if a < b {
+                edges.push((
+                    sim.vertices[a as usize].distance(sim.vertices[b as usize]),
+                    a,
+                    b,
+                ));
+            }
+        }
+    }
+    edges.sort_by(|x, y| x.0.total_cmp(&y.0));
+    let Some(&(median, _, _)) = edges.get(edges.len() / 2) else {
+        return;
+    };
+    let mut uses = std::collections::HashMap::new();
+    for t in &sim.triangles {
+        for k in 0..3 {
+            let (a, b) = (t[k].min(t[(k + 1) % 3]), t[k].max(t[(k + 1) % 3]));
+            *uses.entry((a, b)).or_insert(0) += 1;
+        }
+    }
+    let mut border = vec![false; sim.vertices.len()];
+    for ((a, b), n) in uses {
+        if n == 1 {
+            border[a as usize] = true;
+            border[b as usize] = true;
+        }
+    }
+    for e in edges.iter().take(8) {
+        println!(
+            "short edge {:.4} ({:.3} of median {:.3}) {}-{} border {} {} at {:.2}",
+            e.0,
+            e.0 / median,
+            median,
+            e.1,
+            e.2,
+            border[e.1 as usize],
+            border[e.2 as usize],
+            sim.vertices[e.1 as usize]
+        );
+    }
 }
 
 /// Where control `k`'s response peaks on the shell and what the peak sits against.
