@@ -63,13 +63,13 @@ fn check_file(path: &std::path::Path, basis: &MuscleBasis) {
     let mesh = doc.meshes().next().expect("one mesh");
     let names = target_names(&doc);
     // The ARKit and VRM names the two muscles can make come first (ARKit: browDownRight,
-    // browInnerUp, browOuterUpRight, mouthSmileLeft; VRM: the facebem presets happy, angry and
-    // surprised, relaxed and ih; neutral, the base mesh, is left out, and sad, which in this
-    // two-muscle rig is browInnerUp's frontalis_r at −0.45), then the muscles' contractions that
-    // no named target already is (none: in this two-muscle rig VRM surprised is frontalis_r
-    // contracted) and the presets that no VRM one is (the other four); every relax is −1 × a
-    // written target and left out.
-    let first_own = 4 + 5;
+    // browInnerUp, browOuterUpRight, mouthSmileLeft; VRM: the facebem presets happy and
+    // surprised, relaxed and ih; neutral, the base mesh, is left out, sad, which in this
+    // two-muscle rig is browInnerUp's frontalis_r at −0.45, and angry, its frontalis_r at
+    // +0.45: browInnerUp × −1), then the muscles' contractions that no named target already is
+    // (none: in this two-muscle rig VRM surprised is frontalis_r contracted) and the presets
+    // that no VRM one is (the other four); every relax is −1 × a written target and left out.
+    let first_own = 4 + 4;
     assert_eq!(
         names,
         [
@@ -78,7 +78,6 @@ fn check_file(path: &std::path::Path, basis: &MuscleBasis) {
             "browOuterUpRight",
             "mouthSmileLeft",
             "happy",
-            "angry",
             "relaxed",
             "surprised",
             "ih",
@@ -95,6 +94,7 @@ fn check_file(path: &std::path::Path, basis: &MuscleBasis) {
     );
     assert_eq!(read.extras["sameAs"]["preset_happy"], "happy");
     assert_eq!(read.extras["sameAs"]["sad"], "browInnerUp");
+    assert_eq!(read.extras["negativeOf"]["angry"], "browInnerUp");
     assert_eq!(read.extras["sameAs"]["frontalis_r_contract"], "surprised");
     assert_eq!(read.extras["negativeOf"]["frontalis_r_relax"], "surprised");
     assert_eq!(
@@ -154,10 +154,13 @@ fn animation_gives_one_clip_per_expression_named_after_it() {
     support::assert_valid(&path);
     let (doc, buffers, _) = gltf::import(&path).unwrap();
     let read = gltf_targets::read(&path);
+    // Every preset but neutral (the base mesh) and angry, which in this two-muscle rig is
+    // browInnerUp × −1 (frontalis_r at +0.45 against −0.45): a target left out as a negative
+    // has no clip of its own.
     let expressions: Vec<&str> = facebem::expressions::presets::ALL
         .iter()
         .map(|p| p.name)
-        .filter(|n| *n != "neutral")
+        .filter(|n| !matches!(*n, "neutral" | "angry"))
         .collect();
     let clips: Vec<String> = doc
         .animations()

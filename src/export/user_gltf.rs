@@ -171,13 +171,16 @@ pub fn add_targets(
         let with_normals = primitives_with_normals(&root, mesh);
         // Normals go from the world to the mesh's frame by the transpose of its linear part.
         let mesh_from_world_normal = DMat3::from_mat4(placement.world_from_mesh).transpose();
-        // The file's own normals, turned with the surface (its seams and hard edges kept).
+        // The file's own normals (as the scene read them), turned with the surface (its seams
+        // and hard edges kept); zero where the file has none.
         let file: Vec<Option<Vec<DVec3>>> = by_accessor
             .iter()
-            .map(|a| {
-                with_normals
-                    .then(|| file_normals(&root, &bin, mesh, a.0, a.1))
-                    .flatten()
+            .map(|(_, _, ranges)| {
+                let r = ranges.first()?;
+                let own = scene.normals.get(r.clone())?;
+                let to_mesh = |n: DVec3| (mesh_from_world_normal * n).normalize_or_zero();
+                (with_normals && own.iter().any(Option::is_some))
+                    .then(|| own.iter().map(|n| n.map_or(DVec3::ZERO, to_mesh)).collect())
             })
             .collect();
         for (_, field) in targets {
@@ -445,48 +448,6 @@ fn normal_deltas(
         }
     }
     local
-}
-
-/// The unit `NORMAL`s of the first primitive of `mesh` on `position_accessor` (mesh frame), read
-/// from the GLB's own chunk `bin`; `None` unless it is a plain float VEC3 accessor of `count`
-/// vectors inside its buffer view (not sparse, not quantized): the deltas then keep the
-/// surface normal's change. A zero normal reads as zero.
-fn file_normals(
-    root: &Value,
-    bin: &[u8],
-    mesh: usize,
-    position_accessor: u32,
-    count: u32,
-) -> Option<Vec<DVec3>> {
-    let primitive = root["meshes"][mesh]["primitives"]
-        .as_array()?
-        .iter()
-        .find(|p| p["attributes"]["POSITION"].as_u64() == Some(u64::from(position_accessor)))?;
-    let a =
-        &root["accessors"][usize::try_from(primitive["attributes"]["NORMAL"].as_u64()?).ok()?];
-    let plain = a["componentType"].as_u64() == Some(5126)
-        && a["type"].as_str() == Some("VEC3")
-        && a.get("sparse").is_none()
-        && a["count"].as_u64() == Some(u64::from(count));
-    let view = &root["bufferViews"][usize::try_from(a["bufferView"].as_u64()?).ok()?];
-    if !plain || view["buffer"].as_u64().unwrap_or(0) != 0 {
-        return None;
-    }
-    let offset = |v: &Value| usize::try_from(v["byteOffset"].as_u64().unwrap_or(0)).ok();
-    let stride = usize::try_from(view["byteStride"].as_u64().unwrap_or(12)).ok()?;
-    let start = offset(view)?.checked_add(offset(a)?)?;
-    let end = offset(view)?.checked_add(usize::try_from(view["byteLength"].as_u64()?).ok()?)?;
-    if stride < 12 || end > bin.len() {
-        return None;
-    }
-    (0..count as usize)
-        .map(|i| {
-            let at = start.checked_add(i.checked_mul(stride)?)?;
-            let b = bin.get(at..at.checked_add(12).filter(|&e| e <= end)?)?;
-            let f = |k: usize| f64::from(f32::from_le_bytes([b[k], b[k + 1], b[k + 2], b[k + 3]]));
-            Some(DVec3::new(f(0), f(4), f(8)).normalize_or_zero())
-        })
-        .collect()
 }
 
 /// Binds the VRM expressions (1.0 or 0.x) to the added targets; returns the names bound.

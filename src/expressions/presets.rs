@@ -106,23 +106,25 @@ pub const ALL: [Preset; 9] = [
     },
     Preset {
         name: "angry",
-        action_units: "AU4 + AU10 + AU17 + AU23",
-        description: "brows pulled down and together (corrugator, procerus; frontalis relaxed), \
-                      upper lip raised, chin raised",
+        action_units: "AU4 + AU7 + AU17 + AU24",
+        description: "brows down and together (corrugator, procerus; frontalis relaxed), lids \
+                      tightened, chin raised and lips pressed: fitted once by least squares \
+                      (`fit_recipes`) on the ICT face to the sum of ICT-FaceKit's captured \
+                      browDown, eyeSquint and mouthPress, left and right (cosine 0.59; the \
+                      hand-made preset with the upper lip raised had 0.19)",
         sliders: &[
-            ("frontalis_l", 0.3),
-            ("frontalis_r", 0.3),
-            // −0.6 of the corrugator's 0.6 strain: the brows come down as far as −0.8 of its
-            // former 0.45 did (a 15 mm mid-brow peak on ICT 13k at −0.8 read as a caricature).
-            ("corrugator_supercilii_l", -0.6),
-            ("corrugator_supercilii_r", -0.6),
-            ("procerus", -0.6),
-            ("levator_labii_superioris_l", -0.4),
-            ("levator_labii_superioris_r", -0.4),
-            ("zygomaticus_major_l", 0.2),
-            ("zygomaticus_major_r", 0.2),
-            ("mentalis_l", -0.6),
-            ("mentalis_r", -0.6),
+            ("frontalis_l", 0.45),
+            ("frontalis_r", 0.45),
+            ("corrugator_supercilii_l", -0.35),
+            ("corrugator_supercilii_r", -0.35),
+            ("procerus", -0.45),
+            ("orbicularis_oculi_orbital_l", -1.0),
+            ("orbicularis_oculi_orbital_r", -1.0),
+            ("orbicularis_oculi_malar_l", -0.4),
+            ("orbicularis_oculi_malar_r", -0.4),
+            ("orbicularis_oris_lower", -0.15),
+            ("mentalis_l", -1.0),
+            ("mentalis_r", -1.0),
         ],
     },
     Preset {

@@ -79,8 +79,8 @@ impl WholeFile {
     pub fn refusal(&self, path: &Path) -> String {
         format!(
             "{}: a head or avatar of {} parts ({}); `facebem export` rigs its front face and \
-             carries the rig to every part (pose and the viewer move it so), but rig and sheet \
-             take one face (four openings: contour, eyes, mouth), not a whole head yet",
+             carries the rig to every part (pose, sheet and the viewer move it so), but a rig \
+             file holds one face (four openings: contour, eyes, mouth), not a whole head yet",
             path.display(),
             self.parts.components.len(),
             self.summary()

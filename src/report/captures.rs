@@ -33,6 +33,13 @@ pub struct Row {
     pub head_largest_mm: f64,
     /// The captured largest motion, mm.
     pub captured_largest_mm: f64,
+    /// The largest motion of the skin (the lids, not the lashes riding on them), mm.
+    pub skin_largest_mm: f64,
+    /// The captured largest motion of the skin, mm.
+    pub captured_skin_largest_mm: f64,
+    /// Cosine on the lid parts alone (lashes, occlusion layers, tear film); `None` without
+    /// them.
+    pub lid_parts: Option<f64>,
 }
 
 /// The ICT file stems of an ARKit name (`_L`/`_R`; browInnerUp and cheekPuff in two halves;
@@ -145,11 +152,22 @@ pub fn head_and_narrow_face(
     };
     let n = scene.positions.len();
     let mut eyeball = vec![false; n];
+    let (mut skin, mut lid_part) = (vec![false; n], vec![false; n]);
     for (c, k) in parts.components.iter().zip(&parts.kinds) {
-        if matches!(k, PartKind::Eyeball(_)) {
-            c.vertices.iter().for_each(|&v| eyeball[v as usize] = true);
-        }
+        let flag = match k {
+            PartKind::Eyeball(_) => &mut eyeball,
+            PartKind::Skin => &mut skin,
+            PartKind::LidPart => &mut lid_part,
+            _ => continue,
+        };
+        c.vertices.iter().for_each(|&v| flag[v as usize] = true);
     }
+    let only = |f: &[DVec3], flag: &[bool]| -> Vec<DVec3> {
+        f.iter()
+            .zip(flag)
+            .map(|(d, &on)| if on { *d } else { DVec3::ZERO })
+            .collect()
+    };
     let keep = |f: &[DVec3]| -> Vec<DVec3> {
         f.iter()
             .zip(&eyeball)
@@ -171,6 +189,11 @@ pub fn head_and_narrow_face(
             whole_head: cosine(&ours, &capture),
             head_largest_mm: largest(&ours),
             captured_largest_mm: largest(&capture),
+            skin_largest_mm: largest(&only(&ours, &skin)),
+            captured_skin_largest_mm: largest(&only(&capture, &skin)),
+            lid_parts: lid_part
+                .contains(&true)
+                .then(|| cosine(&only(&ours, &lid_part), &only(&capture, &lid_part))),
             name,
         });
     }

@@ -18,7 +18,7 @@
 //! neutral (ICT-FaceKit's inner lids and socket linings are modelled a little through the
 //! sclera) may stay as deep as it starts, no deeper, and a target that does not move the skin
 //! near an eye leaves it where it is. Parts that follow the skin (lashes, occlusion layers)
-//! follow the corrected skin.
+//! ride on the corrected skin, turned with it about the eye's centre ([`super::lid_riders`]).
 
 use face_prep::parts::{HeadParts, PartKind, Scene};
 use glam::DVec3;
@@ -52,8 +52,9 @@ struct Eye {
 #[derive(Clone, Debug, PartialEq, Default)]
 pub struct EyeContact {
     eyes: Vec<Eye>,
-    /// (vertex, skin vertex it follows): lid parts and other parts near the eyes.
-    followers: Vec<(u32, u32)>,
+    /// (vertex, skin vertex it follows, eye): lid parts and other parts near the eyes, which
+    /// ride on their skin vertex turned about the eye's centre ([`super::lid_riders::ride`]).
+    followers: Vec<(u32, u32, usize)>,
 }
 
 impl EyeContact {
@@ -65,12 +66,7 @@ impl EyeContact {
         };
         let p = &scene.positions;
         let mut longest = vec![0.0f64; p.len()];
-        for (comp, _) in parts
-            .components
-            .iter()
-            .zip(&parts.kinds)
-            .filter(|(_, k)| **k == PartKind::Skin)
-        {
+        for comp in parts.of_kind(PartKind::Skin) {
             for &t in &comp.triangles {
                 let [a, b, c] = scene.triangles[t as usize];
                 for (x, y) in [(a, b), (b, c), (c, a)] {
@@ -86,11 +82,8 @@ impl EyeContact {
             .zip(spheres)
         {
             let eyeball: Vec<u32> = parts
-                .components
-                .iter()
-                .zip(&parts.kinds)
-                .filter(|(_, k)| **k == PartKind::Eyeball(side))
-                .flat_map(|(c, _)| c.vertices.iter().copied())
+                .of_kind(PartKind::Eyeball(side))
+                .flat_map(|c| c.vertices.iter().copied())
                 .collect();
             if eyeball.is_empty() {
                 continue;
@@ -102,11 +95,8 @@ impl EyeContact {
             // cornea's curvature.
             let curvature = CORNEA_CURVATURE * sphere.radius;
             let skin: Vec<(u32, f64)> = parts
-                .components
-                .iter()
-                .zip(&parts.kinds)
-                .filter(|(_, k)| **k == PartKind::Skin)
-                .flat_map(|(comp, _)| comp.vertices.iter().copied())
+                .of_kind(PartKind::Skin)
+                .flat_map(|comp| comp.vertices.iter().copied())
                 .filter(|&v| p[v as usize].distance(c) < CONTACT_REACH * sphere.radius)
                 .map(|v| {
                     let edge = longest[v as usize];
@@ -116,11 +106,8 @@ impl EyeContact {
                 .collect();
             let reach = CONTACT_REACH * sphere.radius;
             let triangles: Vec<[u32; 3]> = parts
-                .components
-                .iter()
-                .zip(&parts.kinds)
-                .filter(|(_, k)| **k == PartKind::Skin)
-                .flat_map(|(comp, _)| comp.triangles.iter().map(|&t| scene.triangles[t as usize]))
+                .of_kind(PartKind::Skin)
+                .flat_map(|comp| comp.triangles.iter().map(|&t| scene.triangles[t as usize]))
                 .filter(|t| t.iter().all(|&v| p[v as usize].distance(c) < reach))
                 .collect();
             let covered = crossings(c, &eyeball, &triangles, &|v| p[v as usize])
@@ -135,14 +122,18 @@ impl EyeContact {
                 covered,
             });
         }
-        let near: std::collections::HashSet<u32> = eyes
+        let near: std::collections::HashMap<u32, usize> = eyes
             .iter()
-            .flat_map(|e| e.skin.iter().map(|&(v, _)| v))
+            .enumerate()
+            .flat_map(|(k, e)| e.skin.iter().map(move |&(v, _)| (v, k)))
             .collect();
         let followers = follows
             .iter()
             .enumerate()
-            .filter_map(|(v, s)| s.filter(|s| near.contains(s)).map(|s| (v as u32, s)))
+            .filter_map(|(v, s)| {
+                let s = (*s)?;
+                near.get(&s).map(|&eye| (v as u32, s, eye))
+            })
             .collect();
         EyeContact { eyes, followers }
     }
@@ -151,8 +142,8 @@ impl EyeContact {
     /// vertices at `neutral`): first every skin vertex that would come nearer the eyeball than
     /// its kept clearance is moved out along the ray from the eye's centre; then, for up to
     /// four rounds, the corners of every skin triangle the eyeball still comes through are
-    /// pushed out by how far, spread over the rings around them. Followers copy their skin
-    /// vertex. Returns how many vertex moves were made (0: the target left the eyes alone).
+    /// pushed out by how far, spread over the rings around them. Followers ride on their
+    /// skin vertex, turned with it about the eye's centre ([`super::lid_riders::ride`]). Returns how many vertex moves were made (0: the target left the eyes alone).
     ///
     /// ```
     /// use facebem::transfer::eye_contact::EyeContact;
@@ -227,8 +218,15 @@ impl EyeContact {
                 }
             }
         }
-        for &(v, s) in &self.followers {
-            field[v as usize] = field[s as usize];
+        for &(v, s, eye) in &self.followers {
+            let (Some(&at_v), Some(&at_s), Some(eye)) = (
+                neutral.get(v as usize),
+                neutral.get(s as usize),
+                self.eyes.get(eye),
+            ) else {
+                continue;
+            };
+            field[v as usize] = super::lid_riders::ride(at_v, at_s, field[s as usize], eye.centre);
         }
         moved
     }

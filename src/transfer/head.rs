@@ -83,20 +83,30 @@ impl HeadBasis {
                 )
             })
             .map(|r| {
-                let mut field = vec![DVec3::ZERO; self.basis.neutral.len()];
-                for (control, &s) in self.basis.displacements.iter().zip(&r.resolved.sliders) {
-                    if s != 0.0 {
-                        for (d, f) in field.iter_mut().zip(control) {
-                            *d += s * *f;
-                        }
-                    }
-                }
-                self.contact.apply(&self.basis.neutral, &mut field);
-                (r.expression.name.to_string(), field)
+                (
+                    r.expression.name.to_string(),
+                    self.field_of(&r.resolved.sliders),
+                )
             })
             .collect();
         out.extend(self.named_fields.iter().cloned());
         out
+    }
+
+    /// The displacement of every vertex of the head at `sliders` (one per control; a shorter
+    /// slice leaves the rest at 0), the lids kept off the eyeballs and the lid parts riding
+    /// on them ([`EyeContact::apply`]).
+    pub fn field_of(&self, sliders: &[f64]) -> Vec<DVec3> {
+        let mut field = vec![DVec3::ZERO; self.basis.neutral.len()];
+        for (control, &s) in self.basis.displacements.iter().zip(sliders) {
+            if s != 0.0 {
+                for (d, f) in field.iter_mut().zip(control) {
+                    *d += s * *f;
+                }
+            }
+        }
+        self.contact.apply(&self.basis.neutral, &mut field);
+        field
     }
 }
 
@@ -174,6 +184,7 @@ pub fn carry_to_head(
         .filter(|&v| kind_of[v as usize] == Some(PartKind::Skin))
         .collect();
     let skin_tree = tree_of(&skin, |s| scene.positions[s as usize]);
+    let lid_roots = super::lid_riders::lid_part_roots(scene, parts, &skin_tree, iod);
     // What every other vertex follows, found once for all controls.
     let follow: Vec<Follow> = (0..n)
         .map(|v| {
@@ -181,7 +192,8 @@ pub fn carry_to_head(
             match kind_of[v] {
                 Some(PartKind::LowerTooth) => Follow::Jaw(1.0),
                 Some(PartKind::GumsAndTongue) => Follow::Jaw(rows.lower_share(p)),
-                Some(PartKind::LidPart | PartKind::Other) => skin_tree
+                Some(PartKind::LidPart) => lid_roots[v].map_or(Follow::Still, Follow::Skin),
+                Some(PartKind::Other) => skin_tree
                     .nearest(p)
                     .map_or(Follow::Still, |(s, _)| Follow::Skin(s)),
                 _ => Follow::Still,
@@ -395,7 +407,8 @@ enum Follow {
     Still,
     /// This share of the jaw's rigid motion.
     Jaw(f64),
-    /// The skin vertex it lies nearest.
+    /// The skin vertex it lies nearest (a lid part: the one its root lies nearest,
+    /// [`super::lid_riders`]).
     Skin(u32),
 }
 

@@ -11,6 +11,7 @@ mod carry;
 pub mod eye_contact;
 pub mod gaze;
 pub mod head;
+pub mod lid_riders;
 pub mod nearest;
 pub mod tongue;
 

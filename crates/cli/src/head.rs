@@ -57,7 +57,7 @@ pub(crate) fn export_head(
 
 /// Cuts the front face of the head `whole` (read from `path`), rigs it and carries the rig to
 /// every vertex of the head.
-fn rig_head(
+pub(crate) fn rig_head(
     path: &Path,
     whole: &WholeFile,
     params: &facebem::PipelineParams,

@@ -95,16 +95,8 @@ pub(crate) fn compute(
 }
 
 /// A posable model from a rig file, or from a face mesh computed first with `params` (the
-/// command line's rig options, [`pipeline_params`]; the rig cache unless `no_cache`).
-pub(crate) fn model_from(
-    path: &Path,
-    params: &PipelineParams,
-    no_cache: bool,
-) -> Result<FaceModel> {
-    Ok(model_from_opened(path, open(path)?, params, no_cache)?.0)
-}
-
-/// Like [`model_from`], for a file already opened, saying where the rig came from. A rig file
+/// command line's rig options, [`pipeline_params`]; the rig cache unless `no_cache`), for a
+/// file already opened, saying where the rig came from. A rig file
 /// was computed with its own options: rig options other than the defaults are refused with
 /// one, rather than ignored.
 pub(crate) fn model_from_opened(

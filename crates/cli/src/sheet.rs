@@ -1,13 +1,15 @@
-//! `sheet`: the contact sheet PNG.
+//! `sheet`: the contact sheet PNG, of a face or of a whole head.
 
 use anyhow::Result;
 use facebem::expressions::{self, NameSet, NameSets};
+use facebem::report::contact_sheet::{
+    self, RgbImage, Selection, SheetError, SheetMesh, SheetOptions,
+};
 
 use crate::args::SheetArgs;
-use crate::rig::{model_from, pipeline_params};
+use crate::rig::{model_from_opened, pipeline_params};
 
 pub(crate) fn sheet(args: &SheetArgs) -> Result<()> {
-    use facebem::report::contact_sheet::{self, Selection, SheetOptions};
     let params = pipeline_params(&args.solver)?;
     facebem::check_output(
         &args.output,
@@ -15,7 +17,6 @@ pub(crate) fn sheet(args: &SheetArgs) -> Result<()> {
         &["png"],
         "a contact sheet (PNG)",
     )?;
-    let model = model_from(&args.rig, &params, args.solver.no_cache)?;
     let selection = match args.only.as_deref() {
         Some("muscles") => Selection::Muscles,
         Some("presets") => Selection::Presets,
@@ -23,7 +24,49 @@ pub(crate) fn sheet(args: &SheetArgs) -> Result<()> {
         Some("vrm") => Selection::Named(NameSet::Vrm),
         _ => Selection::All,
     };
+    let opened = match crate::open_face(&args.rig) {
+        Ok(opened) => opened,
+        // A whole head: its front face rigged, the sheet drawn on every part.
+        Err(e @ facebem::input::OpenError::Face { .. }) => {
+            return match facebem::input::heads::WholeFile::examine(&args.rig) {
+                Some(Ok(whole)) => {
+                    let (model, head) =
+                        crate::head::rig_head(&args.rig, &whole, &params, &args.solver, true)?;
+                    let cells = contact_sheet::head::head_cells(&model, &head, selection);
+                    let mesh = SheetMesh {
+                        neutral: &head.basis.neutral,
+                        triangles: &head.basis.triangles,
+                        ..SheetMesh::of(&model)
+                    };
+                    let labels: Vec<&str> = cells.iter().map(|c| c.label.as_str()).collect();
+                    draw(args, &model, selection, &labels, |opts| {
+                        contact_sheet::render_fields(&mesh, &cells, opts)
+                    })
+                }
+                Some(Err(refusal)) => Err(anyhow::anyhow!("{refusal}")),
+                None => Err(e.into()),
+            };
+        }
+        Err(e) => return Err(e.into()),
+    };
+    let (model, _) = model_from_opened(&args.rig, opened, &params, args.solver.no_cache)?;
     let cells = contact_sheet::standard_cells(&model, selection);
+    let labels: Vec<&str> = cells.iter().map(|c| c.label.as_str()).collect();
+    draw(args, &model, selection, &labels, |opts| {
+        contact_sheet::render(&model, &cells, opts)
+    })
+}
+
+/// Draws the cells `labels` (of the rig `model`'s face, or of a whole head carried from it)
+/// with `render` and writes the PNG, saying which names of the selected standard the rig
+/// leaves out.
+fn draw(
+    args: &SheetArgs,
+    model: &facebem::FaceModel,
+    selection: Selection,
+    labels: &[&str],
+    render: impl FnOnce(&SheetOptions) -> Result<RgbImage, SheetError>,
+) -> Result<()> {
     if let Selection::Named(set) = selection {
         let (_, left_out) = expressions::for_rig(
             NameSets {
@@ -33,8 +76,12 @@ pub(crate) fn sheet(args: &SheetArgs) -> Result<()> {
             },
             model.muscle_ids(),
         );
-        if !left_out.is_empty() {
-            let names: Vec<&str> = left_out.iter().map(|(e, _)| e.name).collect();
+        let names: Vec<&str> = left_out
+            .iter()
+            .map(|(e, _)| e.name)
+            .filter(|n| !labels.contains(n))
+            .collect();
+        if !names.is_empty() {
             outln!(
                 "{} names left out (their controls are not in this rig): {}",
                 set.display_name(),
@@ -56,7 +103,7 @@ pub(crate) fn sheet(args: &SheetArgs) -> Result<()> {
         Selection::Named(set) => format!(
             "  {} names: {} of {}",
             set.display_name(),
-            cells.len(),
+            labels.len(),
             set.standard_size()
         ),
         _ => String::new(),
@@ -66,12 +113,12 @@ pub(crate) fn sheet(args: &SheetArgs) -> Result<()> {
         ..SheetOptions::default()
     };
     let start = std::time::Instant::now();
-    let image = contact_sheet::render(&model, &cells, &opts)?;
+    let image = render(&opts)?;
     contact_sheet::write_png(&args.output, &image)?;
     outln!(
         "{}: {} cells, {} x {} px, drawn and written in {:.2} s",
         args.output.display(),
-        cells.len(),
+        labels.len(),
         image.width,
         image.height,
         start.elapsed().as_secs_f64()

@@ -22,6 +22,7 @@ const UPPER_TEETH: std::ops::Range<usize> = 17_039..19_247;
 const LOWER_TEETH: std::ops::Range<usize> = 19_247..21_451;
 const EYEBALL_LEFT: std::ops::Range<usize> = 21_451..23_021;
 const EYEBALL_RIGHT: std::ops::Range<usize> = 23_021..24_591;
+const LASHES: std::ops::Range<usize> = 25_351..26_719;
 
 type V3 = [f64; 3];
 
@@ -95,6 +96,53 @@ fn a_head_looks_and_sticks_its_tongue_out() {
     gaze(&head, &v, &field);
     tongue(&v, &field("tongueOut"), &field("jawOpen"));
     eyes_stay_behind_the_lids(&head, &v, &field);
+    lashes_ride_the_lids(&head, &v, &field);
+}
+
+/// The lashes ride on the lids: in every target that moves the lids, no lash edge stretches
+/// past 1.75 times its length or shrinks below 0.4 (the lid skin they are rooted in strains
+/// 0.44–2.45 in `eyeBlinkLeft`, 1st to 99th percentile of its edges within 1.3 eyeball radii,
+/// so a card along the margin cannot stay rigid; each lash vertex rides on the skin at its
+/// root, turned with the lid about the eye's centre). Regression (issue 32): each lash vertex
+/// took the motion of the skin it lay nearest, and the lash edges stretched and shrank to
+/// 0.37–3.22 of their length in `eyeBlinkLeft` (the strip folded into flaps at the closed
+/// eye's corners), 0.61–2.34 in `eyeLookDownLeft`, 0.54–1.77 in `eyeSquintLeft`, 0.90–1.62
+/// in `eyeWideLeft`.
+fn lashes_ride_the_lids(head: &Path, v: &[V3], field: &dyn Fn(&str) -> Vec<V3>) {
+    let mut edges: Vec<(usize, usize)> = triangles_in(head, LASHES)
+        .iter()
+        .flat_map(|t| [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])])
+        .map(|(a, b)| (a.min(b), a.max(b)))
+        .collect();
+    edges.sort_unstable();
+    edges.dedup();
+    assert!(edges.len() > 2000, "{} lash edges", edges.len());
+    for name in [
+        "eyeBlinkLeft",
+        "eyeBlinkRight",
+        "eyeSquintLeft",
+        "eyeWideLeft",
+        "eyeLookUpLeft",
+        "eyeLookDownLeft",
+        "blink",
+    ] {
+        let d = field(name);
+        let at = |i: usize| [v[i][0] + d[i][0], v[i][1] + d[i][1], v[i][2] + d[i][2]];
+        let (mut lo, mut hi) = (f64::INFINITY, 0.0f64);
+        for &(a, b) in &edges {
+            let before = len(sub(v[a], v[b]));
+            if before > 1e-6 {
+                let ratio = len(sub(at(a), at(b))) / before;
+                lo = lo.min(ratio);
+                hi = hi.max(ratio);
+            }
+        }
+        eprintln!("{name}: lash edges {lo:.3}–{hi:.3} of their length");
+        assert!(
+            lo >= 0.4 && hi <= 1.75,
+            "{name}: lash edges {lo:.3}–{hi:.3} of their length"
+        );
+    }
 }
 
 /// No lid passes into an eyeball: in every target that moves the eyes or the lids (ARKit's
@@ -353,6 +401,12 @@ fn tongue(v: &[V3], out: &[V3], open: &[V3]) {
 /// The skin's triangles of the OBJ `head` (its `f` lines, fans split, 0-based) whose corners
 /// all lie in `SKIN`.
 fn skin_triangles(head: &Path) -> Vec<[usize; 3]> {
+    triangles_in(head, SKIN)
+}
+
+/// The triangles of the OBJ `head` (its `f` lines, fans split, 0-based) whose corners all lie
+/// in `range`.
+fn triangles_in(head: &Path, range: std::ops::Range<usize>) -> Vec<[usize; 3]> {
     let text = std::fs::read_to_string(head).unwrap();
     let mut out = Vec::new();
     for l in text.lines().filter_map(|l| l.strip_prefix("f ")) {
@@ -362,7 +416,7 @@ fn skin_triangles(head: &Path) -> Vec<[usize; 3]> {
             .collect();
         for k in 1..c.len() - 1 {
             let t = [c[0], c[k], c[k + 1]];
-            if t.iter().all(|i| SKIN.contains(i)) {
+            if t.iter().all(|i| range.contains(i)) {
                 out.push(t);
             }
         }

@@ -1,7 +1,7 @@
 //! A whole head (issue 32): `facebem info` lists the parts it finds in ICT-FaceKit's generic
 //! head (`assets/heads/`); `facebem export` writes it back with the morph targets on every part
-//! (its front face rigged, the rig carried to the rest); `pose` poses it whole; `rig` refuses it
-//! with one line that says why, writing nothing.
+//! (its front face rigged, the rig carried to the rest); `pose` poses it whole; `sheet` draws
+//! it whole; `rig` refuses it with one line that says why, writing nothing.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -353,4 +353,59 @@ fn a_head_poses_whole_in_its_own_layout() {
     assert_eq!(stderr.lines().count(), 1, "{stderr}");
     assert!(stderr.contains("unknown preset"), "{stderr}");
     assert!(!file.exists());
+}
+
+/// `sheet` draws a whole head (issue 32): its front face rigged and carried to every part, the
+/// ARKit page with all 52 names in ARKit's order (the 43 the controls make, the eight gaze
+/// targets and `tongueOut`), each with heat where it moves: at least 200 heat-coloured pixels
+/// in the front panel of the jaw, the gaze and the tongue.
+#[test]
+fn a_head_draws_its_contact_sheet() {
+    use facebem::report::contact_sheet::{self, SheetOptions, heat};
+    let out = tempfile::tempdir().unwrap();
+    let head = head();
+    let png_path = out.path().join("head_arkit.png");
+    let run = facebem(
+        &[
+            "sheet",
+            head.to_str().unwrap(),
+            "-o",
+            png_path.to_str().unwrap(),
+            "--only",
+            "arkit",
+        ],
+        out.path(),
+    );
+    let stdout = String::from_utf8_lossy(&run.stdout);
+    assert!(
+        run.status.success(),
+        "{stdout}{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    assert!(stdout.contains("52 cells"), "{stdout}");
+    assert!(!stdout.contains("left out"), "{stdout}");
+    let decoder = png::Decoder::new(std::io::BufReader::new(
+        std::fs::File::open(&png_path).unwrap(),
+    ));
+    let mut reader = decoder.read_info().unwrap();
+    let mut pixels = vec![0; reader.output_buffer_size().unwrap()];
+    let frame = reader.next_frame(&mut pixels).unwrap();
+    assert_eq!(frame.color_type, png::ColorType::Rgb);
+    let layout = contact_sheet::layout(52, &SheetOptions::default());
+    assert_eq!((frame.width, frame.height), (layout.width, layout.height));
+    let names = facebem::expressions::arkit::NAMES;
+    for name in ["jawOpen", "eyeLookUpLeft", "eyeLookInRight", "tongueOut"] {
+        let cell = names.iter().position(|n| *n == name).unwrap();
+        let r = layout.panel(cell, 0);
+        let mut hot = 0;
+        for y in r.y + 14..r.y + r.h {
+            for x in r.x..r.x + r.w {
+                let i = 3 * (y as usize * frame.width as usize + x as usize);
+                if heat::classify([pixels[i], pixels[i + 1], pixels[i + 2]]).is_some() {
+                    hot += 1;
+                }
+            }
+        }
+        assert!(hot >= 200, "{name}: {hot} heat-coloured pixels");
+    }
 }

@@ -97,6 +97,7 @@ fn the_parts_do_not_depend_on_pose_size_or_numbering() {
         triangle_label: scene.triangle_label.iter().rev().copied().collect(),
         labels: scene.labels.clone(),
         gltf_meshes: Vec::new(),
+        normals: Vec::new(),
     };
     let kinds = vertex_kinds(&moved);
     for v in 0..n as usize {

@@ -25,6 +25,7 @@
 //! Command line: `facebem sheet face.rig -o sheet.png [--only muscles|presets|arkit|vrm]`.
 
 mod camera;
+pub mod head;
 pub mod heat;
 mod image;
 mod layout;
@@ -257,16 +258,22 @@ pub fn layout(cells: usize, opts: &SheetOptions) -> SheetLayout {
 /// The camera of each view in `opts` for `model` (panel pixels; canonical frame), as
 /// [`render`] uses them: fitted to the neutral face.
 pub fn cameras(model: &FaceModel, opts: &SheetOptions) -> Vec<Camera> {
-    let neutral = canonical(model, &model.basis.neutral);
-    opts.views
+    let t = model.rig.canonical_from_input;
+    let neutral: Vec<DVec3> = model
+        .basis
+        .neutral
         .iter()
-        .map(|v| Camera::fit(v, &neutral, opts.panel_px, opts.panel_px, opts.margin))
-        .collect()
+        .map(|&p| t.transform_point3(p))
+        .collect();
+    fitted_cameras(&neutral, opts)
 }
 
-fn canonical(model: &FaceModel, points: &[DVec3]) -> Vec<DVec3> {
-    let t = model.rig.canonical_from_input;
-    points.iter().map(|&p| t.transform_point3(p)).collect()
+/// The camera of each view in `opts` fitted to `neutral` (canonical frame).
+fn fitted_cameras(neutral: &[DVec3], opts: &SheetOptions) -> Vec<Camera> {
+    opts.views
+        .iter()
+        .map(|v| Camera::fit(v, neutral, opts.panel_px, opts.panel_px, opts.margin))
+        .collect()
 }
 
 fn check_options(opts: &SheetOptions, mm: f64) -> Result<(), SheetError> {
@@ -301,8 +308,6 @@ pub fn render(
     cells: &[SheetCell],
     opts: &SheetOptions,
 ) -> Result<RgbImage, SheetError> {
-    let mm = opts.mm_per_unit.unwrap_or_else(|| mm_per_unit(model));
-    check_options(opts, mm)?;
     let basis = &model.basis;
     for cell in cells {
         basis
@@ -312,33 +317,109 @@ pub fn render(
                 source,
             })?;
     }
+    let posed: Vec<FieldCell> = cells
+        .par_iter()
+        .map(|cell| {
+            let mut posed = Vec::new();
+            // Checked above.
+            let _ = basis.pose_into(&cell.sliders, &mut posed);
+            FieldCell {
+                label: cell.label.clone(),
+                caption: cell.caption.clone(),
+                displacement: posed
+                    .iter()
+                    .zip(&basis.neutral)
+                    .map(|(p, q)| *p - *q)
+                    .collect(),
+            }
+        })
+        .collect();
+    render_fields(&SheetMesh::of(model), &posed, opts)
+}
+
+/// One cell of a sheet given as a displacement field, one per vertex of the [`SheetMesh`] (a
+/// whole head's targets, [`head::head_cells`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct FieldCell {
+    /// Name drawn large above the cell.
+    pub label: String,
+    /// Small second line; the cell's largest displacement in mm is drawn in front of it.
+    pub caption: String,
+    /// Displacement of every vertex, in the mesh's input frame and unit.
+    pub displacement: Vec<DVec3>,
+}
+
+/// What a sheet is drawn on: a neutral mesh, its canonical frame and its unit.
+#[derive(Clone, Copy, Debug)]
+pub struct SheetMesh<'a> {
+    /// Neutral positions (input frame).
+    pub neutral: &'a [DVec3],
+    /// Triangles indexing [`SheetMesh::neutral`].
+    pub triangles: &'a [[u32; 3]],
+    /// The face's canonical frame (upright, facing +z) from the input frame.
+    pub canonical_from_input: glam::DAffine3,
+    /// Millimetres per unit for the heat scale (when the options give none).
+    pub mm_per_unit: f64,
+}
+
+impl<'a> SheetMesh<'a> {
+    /// The model's own mesh.
+    pub fn of(model: &'a FaceModel) -> SheetMesh<'a> {
+        SheetMesh {
+            neutral: &model.basis.neutral,
+            triangles: &model.basis.triangles,
+            canonical_from_input: model.rig.canonical_from_input,
+            mm_per_unit: mm_per_unit(model),
+        }
+    }
+}
+
+/// Draws displacement fields of `mesh` into one sheet image, as [`render`] draws poses; a
+/// cell whose field is not one vector per vertex is an error.
+pub fn render_fields(
+    mesh: &SheetMesh,
+    cells: &[FieldCell],
+    opts: &SheetOptions,
+) -> Result<RgbImage, SheetError> {
+    let mm = opts.mm_per_unit.unwrap_or(mesh.mm_per_unit);
+    check_options(opts, mm)?;
+    if let Some(c) = cells
+        .iter()
+        .find(|c| c.displacement.len() != mesh.neutral.len())
+    {
+        return Err(SheetError::Options(format!(
+            "cell {:?} has {} displacements for {} vertices",
+            c.label,
+            c.displacement.len(),
+            mesh.neutral.len()
+        )));
+    }
     let layout = layout(cells.len(), opts);
-    let cams = cameras(model, opts);
+    let to_canonical = |points: &[DVec3]| -> Vec<DVec3> {
+        let t = mesh.canonical_from_input;
+        points.iter().map(|&p| t.transform_point3(p)).collect()
+    };
+    let cams = fitted_cameras(&to_canonical(mesh.neutral), opts);
 
     // Each cell's panels, rendered in parallel; each panel on its own, so the result does not
     // depend on the thread schedule.
     let drawn: Vec<(Vec<RgbImage>, f64)> = cells
         .par_iter()
         .map(|cell| {
-            let mut posed = Vec::new();
-            // Checked above.
-            let _ = basis.pose_into(&cell.sliders, &mut posed);
-            let disp_mm: Vec<f64> = posed
+            let posed: Vec<DVec3> = mesh
+                .neutral
                 .iter()
-                .zip(&basis.neutral)
-                .map(|(p, q)| p.distance(*q) * mm)
+                .zip(&cell.displacement)
+                .map(|(q, d)| *q + *d)
                 .collect();
+            let disp_mm: Vec<f64> = cell.displacement.iter().map(|d| d.length() * mm).collect();
             let max_mm = disp_mm.iter().copied().fold(0.0, f64::max);
-            let positions = canonical(model, &posed);
-            let rot = model.rig.canonical_from_input.matrix3;
-            let displacement: Vec<DVec3> = posed
-                .iter()
-                .zip(&basis.neutral)
-                .map(|(p, q)| rot * (*p - *q))
-                .collect();
+            let positions = to_canonical(&posed);
+            let rot = mesh.canonical_from_input.matrix3;
+            let displacement: Vec<DVec3> = cell.displacement.iter().map(|d| rot * *d).collect();
             let mesh = raster::PanelMesh {
                 positions: &positions,
-                triangles: &basis.triangles,
+                triangles: mesh.triangles,
                 displacement_mm: &disp_mm,
                 displacement: &displacement,
             };

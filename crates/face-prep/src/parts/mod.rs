@@ -103,6 +103,30 @@ pub struct HeadParts {
     pub frame: Option<HeadFrame>,
 }
 
+impl HeadParts {
+    /// The components that are `kind`.
+    ///
+    /// ```
+    /// use face_prep::parts::{Component, HeadParts, PartKind};
+    /// let c = |v: u32| Component { triangles: vec![], vertices: vec![v] };
+    /// let parts = HeadParts {
+    ///     components: vec![c(0), c(1), c(2)],
+    ///     kinds: vec![PartKind::Skin, PartKind::LidPart, PartKind::LidPart],
+    ///     eyeballs: None,
+    ///     frame: None,
+    /// };
+    /// let lids: Vec<u32> = parts.of_kind(PartKind::LidPart).map(|c| c.vertices[0]).collect();
+    /// assert_eq!(lids, [1, 2]);
+    /// ```
+    pub fn of_kind(&self, kind: PartKind) -> impl Iterator<Item = &Component> {
+        self.components
+            .iter()
+            .zip(&self.kinds)
+            .filter(move |(_, k)| **k == kind)
+            .map(|(c, _)| c)
+    }
+}
+
 /// Errors finding the parts.
 #[derive(Clone, Debug, thiserror::Error, PartialEq)]
 #[non_exhaustive]

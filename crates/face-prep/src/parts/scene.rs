@@ -48,6 +48,9 @@ pub struct Scene {
     pub labels: Vec<String>,
     /// glTF only: where each mesh's vertices are ([`GltfMeshPlacement`]), by mesh index.
     pub gltf_meshes: Vec<GltfMeshPlacement>,
+    /// glTF only: per position, the file's unit `NORMAL` turned into the world frame (`None`
+    /// where its primitive has none, or the normal is zero); empty for an OBJ.
+    pub normals: Vec<Option<DVec3>>,
 }
 
 /// Where a glTF mesh's vertices are in a [`Scene`], and the transform they were read with.
@@ -225,6 +228,11 @@ impl Scene {
                     .or_insert_with(|| {
                         let first = scene.positions.len() as u32;
                         scene.positions.extend(positions);
+                        scene.normals.extend(local.clone().map(|v| {
+                            data.normals
+                                .as_ref()
+                                .and_then(|n| n.get(v).copied().flatten())
+                        }));
                         scene
                             .sources
                             .extend(local.clone().map(|v| VertexSource::Gltf {

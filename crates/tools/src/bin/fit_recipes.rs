@@ -45,8 +45,9 @@ const RELAX: f64 = 0.5;
 /// The antagonists a target may release (left versions; the right recipe mirrors): the brow
 /// lowerer lets the frontalis go, a roll lets go the muscle that everts its lip, the mouth's
 /// sideways move lets the other side's cheek go. Every other control only contracts.
-const RELEASED: [(&str, &str); 6] = [
+const RELEASED: [(&str, &str); 7] = [
     ("browDownLeft", "frontalis_l"),
+    ("angry", "frontalis_l"),
     ("mouthRollLower", "depressor_labii_inferioris"),
     ("mouthRollUpper", "levator_labii_superioris"),
     ("mouthLeft", "risorius_r"),
@@ -140,8 +141,11 @@ fn print_emotions(
         ),
         ("sad", &["browInnerUp", "mouthFrownLeft", "mouthFrownRight"]),
     ];
-    println!("\n| VRM | ICT sum | preset cosine | sum of the fitted targets' cosine |");
-    println!("|---|---|---|---|");
+    println!(
+        "\n| VRM | ICT sum | preset cosine | sum of the fitted targets' cosine | fitted to the sum |"
+    );
+    println!("|---|---|---|---|---|");
+    let mut joint_recipes = Vec::new();
     for (emotion, names) in SUMS {
         let mut capture = vec![DVec3::ZERO; n];
         let mut ours = vec![DVec3::ZERO; n];
@@ -158,12 +162,22 @@ fn print_emotions(
             .ok_or_else(|| anyhow::anyhow!("no preset {emotion}"))?
             .sliders_for(ids);
         let preset_field = field_of(fields, ids.iter().cloned().zip(preset));
+        let joint = fit(fields, ids, emotion, &capture, &capture)?;
+        let joint_field = field_of(fields, joint.iter().cloned());
         println!(
-            "| {emotion} | {} | {:.2} | {:.2} |",
+            "| {emotion} | {} | {:.2} | {:.2} | {:.2} |",
             names.join(" + "),
             cosine(&preset_field, &capture),
-            cosine(&ours, &capture)
+            cosine(&ours, &capture),
+            cosine(&joint_field, &capture)
         );
+        joint_recipes.push((emotion, joint));
+    }
+    for (emotion, joint) in joint_recipes {
+        println!("\n// {emotion}, fitted to the ICT sum:");
+        for (id, v) in joint {
+            println!("(\"{id}\", {v:.2}),");
+        }
     }
     Ok(())
 }
