@@ -290,11 +290,8 @@ fn border_along_skin(
         .filter_map(|(&v, m)| m.filter(|&m| on_border[m as usize]).map(|m| (weld(v), m)))
         .collect();
     let skin_triangles: Vec<[u32; 3]> = parts
-        .components
-        .iter()
-        .zip(&parts.kinds)
-        .filter(|(_, k)| **k == PartKind::Skin)
-        .flat_map(|(c, _)| {
+        .of_kind(PartKind::Skin)
+        .flat_map(|c| {
             c.triangles
                 .iter()
                 .map(|&t| scene.triangles[t as usize].map(weld))

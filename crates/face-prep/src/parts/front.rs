@@ -94,11 +94,8 @@ pub fn front_face(scene: &Scene, parts: &HeadParts) -> Result<FrontFace, FrontFa
     // corner at the first vertex of its coordinates (Scene::first_at_same_place).
     let first = scene.first_at_same_place();
     let kept: Vec<[u32; 3]> = parts
-        .components
-        .iter()
-        .zip(&parts.kinds)
-        .filter(|(_, k)| **k == PartKind::Skin)
-        .flat_map(|(c, _)| c.triangles.iter().map(|&t| scene.triangles[t as usize]))
+        .of_kind(PartKind::Skin)
+        .flat_map(|c| c.triangles.iter().map(|&t| scene.triangles[t as usize]))
         .map(|t| t.map(|v| first.get(v as usize).copied().unwrap_or(v)))
         .filter(|t| {
             let corners = t.map(p);

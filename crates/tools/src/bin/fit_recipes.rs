@@ -6,8 +6,12 @@
 //! cargo run --release -p facebem-tools --bin fit_recipes
 //! ```
 //!
-//! It prints the table, then the block that is `src/expressions/arkit_fitted.rs` (paste it
-//! there and run `cargo fmt`; the committed file is exactly that).
+//! It prints the table (per target: the cosine before and after the fit, the cosine over the
+//! vertices facing the viewer, the motion at the target's landmark — where the capture moves
+//! at least 90 % of its peak — against the captured, the largest motion, and the share of the
+//! motion where the capture moves under 10 % of its peak), then the block that is
+//! `src/expressions/arkit_fitted.rs` (paste it there and run `cargo fmt`; the committed file
+//! is exactly that).
 //!
 //! The method (so that the recipes are one calibration, not per-face tuning):
 //!
@@ -103,7 +107,15 @@ fn main() -> anyhow::Result<()> {
         let new_field = field_of(&fields, recipe.iter().cloned());
         rows.push((e.name, old_field, new_field, capture, recipe));
     }
-    print_table(&rows);
+    // The vertices facing the viewer: the unit normal's forward (canonical +z) part above 0.3.
+    let normals = face_prep::shell::vertex_normals(&narrow.vertices, &narrow.triangles);
+    let forward = (model.rig.canonical_from_input.matrix3.inverse() * DVec3::Z).normalize_or_zero();
+    let front: Vec<bool> = narrow
+        .input_to_vertex
+        .iter()
+        .map(|v| v.is_some_and(|v| normals[v as usize].dot(forward) > 0.3))
+        .collect();
+    print_table(&rows, &front);
     print_emotions(&fields, &ids, &rows, &dir, n)?;
     print_recipes(&rows);
     Ok(())
@@ -398,18 +410,46 @@ fn still_share(ours: &[DVec3], capture: &[DVec3]) -> f64 {
     if total > 0.0 { still / total } else { 0.0 }
 }
 
-fn print_table(rows: &[Row]) {
+/// Mean motion of the response over the mean motion of the capture where the capture moves at
+/// least 90 % of its peak (the target's landmark: the corner in a smile, the lid in a blink).
+fn landmark_ratio(ours: &[DVec3], capture: &[DVec3]) -> f64 {
+    let peak = largest(capture);
+    let (mut o, mut c) = (0.0, 0.0);
+    for (d, k) in ours.iter().zip(capture) {
+        if k.length() >= 0.9 * peak {
+            o += d.length();
+            c += k.length();
+        }
+    }
+    if c > 0.0 { o / c } else { 0.0 }
+}
+
+/// The cosine over the vertices flagged in `front` only.
+fn front_cosine(ours: &[DVec3], capture: &[DVec3], front: &[bool]) -> f64 {
+    let keep = |f: &[DVec3]| -> Vec<DVec3> {
+        f.iter()
+            .zip(front)
+            .map(|(d, &on)| if on { *d } else { DVec3::ZERO })
+            .collect()
+    };
+    cosine(&keep(ours), &keep(capture))
+}
+
+/// The table issue 33 asks for; `front` flags the vertices facing the viewer.
+fn print_table(rows: &[Row], front: &[bool]) {
     println!(
-        "| target | cosine before | cosine fitted | largest mm fitted (captured) | still share |"
+        "| target | cosine before | cosine fitted | front-only cosine | at the landmark (× captured) | largest mm fitted (captured) | still share |"
     );
-    println!("|---|---|---|---|---|");
+    println!("|---|---|---|---|---|---|---|");
     let (mut before, mut after) = (0.0, 0.0);
     for (name, old, new, cap, _) in rows {
         let (c0, c1) = (cosine(old, cap), cosine(new, cap));
         before += c0;
         after += c1;
         println!(
-            "| {name} | {c0:.2} | {c1:.2} | {:.1} ({:.1}) | {:.2} |",
+            "| {name} | {c0:.2} | {c1:.2} | {:.2} | {:.2} | {:.1} ({:.1}) | {:.2} |",
+            front_cosine(new, cap, front),
+            landmark_ratio(new, cap),
             largest(new),
             largest(cap),
             still_share(new, cap)
