@@ -168,12 +168,9 @@ pub fn head_and_narrow_face(
             .map(|(d, &on)| if on { *d } else { DVec3::ZERO })
             .collect()
     };
-    let keep = |f: &[DVec3]| -> Vec<DVec3> {
-        f.iter()
-            .zip(&eyeball)
-            .map(|(d, &e)| if e { DVec3::ZERO } else { *d })
-            .collect()
-    };
+    // Every vertex but the eyeballs' (the captures do not turn them).
+    let not_eyeball: Vec<bool> = eyeball.iter().map(|&e| !e).collect();
+    let keep = |f: &[DVec3]| only(f, &not_eyeball);
     let largest = |f: &[DVec3]| f.iter().map(|d| d.length()).fold(0.0, f64::max);
     let mut rows = Vec::new();
     for (name, field) in named_targets(&head.basis, &gltf)?.targets {
