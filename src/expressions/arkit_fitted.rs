@@ -125,39 +125,23 @@ pub(super) const MOUTH_PRESS_RIGHT: &[(&str, f64)] = &[
 ];
 /// `mouthRollLower`.
 pub(super) const MOUTH_ROLL_LOWER: &[(&str, f64)] = &[
-    ("depressor_anguli_oris_l", -1.00),
-    ("depressor_anguli_oris_r", -1.00),
-    ("levator_anguli_oris_l", -1.00),
-    ("levator_anguli_oris_r", -1.00),
     ("mentalis_l", -1.00),
     ("mentalis_r", -1.00),
-    ("orbicularis_oris_upper", -0.55),
+    ("orbicularis_oris_marginal_lower", -1.00),
     ("depressor_labii_inferioris_l", 0.50),
     ("depressor_labii_inferioris_r", 0.50),
-    ("buccinator_l", -0.30),
-    ("buccinator_r", -0.30),
-    ("zygomaticus_minor_l", -0.30),
-    ("zygomaticus_minor_r", -0.30),
-    ("orbicularis_oculi_malar_l", -0.10),
-    ("orbicularis_oculi_malar_r", -0.10),
 ];
 /// `mouthRollUpper`.
 pub(super) const MOUTH_ROLL_UPPER: &[(&str, f64)] = &[
-    ("buccinator_l", -1.00),
-    ("buccinator_r", -1.00),
-    ("levator_anguli_oris_l", -1.00),
-    ("levator_anguli_oris_r", -1.00),
-    ("depressor_anguli_oris_l", -0.85),
-    ("depressor_anguli_oris_r", -0.85),
-    ("orbicularis_oris_lower", -0.60),
-    ("depressor_labii_inferioris_l", -0.50),
-    ("depressor_labii_inferioris_r", -0.50),
+    ("orbicularis_oris_marginal_upper", -1.00),
     ("levator_labii_superioris_l", 0.50),
     ("levator_labii_superioris_r", 0.50),
-    ("mentalis_l", -0.20),
-    ("mentalis_r", -0.20),
-    ("risorius_l", -0.10),
-    ("risorius_r", -0.10),
+    ("zygomaticus_minor_l", -0.35),
+    ("zygomaticus_minor_r", -0.35),
+    ("depressor_labii_inferioris_l", -0.30),
+    ("depressor_labii_inferioris_r", -0.30),
+    ("mentalis_l", -0.25),
+    ("mentalis_r", -0.25),
 ];
 /// `mouthShrugLower`.
 pub(super) const MOUTH_SHRUG_LOWER: &[(&str, f64)] = &[

@@ -28,8 +28,8 @@ pub mod shell;
 
 // The stages' modules under their short historical paths (`face_prep::orient`, ...).
 pub use controls::{
-    anatomy, eyelid, force_controls, ids, jaw, lip_seal, modiolus, muscle_file, muscle_kind,
-    muscle_model, muscles, teeth,
+    anatomy, eyelid, force_controls, ids, jaw, lip_margin, lip_seal, modiolus, muscle_file,
+    muscle_kind, muscle_model, muscles, teeth,
 };
 pub use frame::{features, orient, topology};
 pub use input::{gltf_read, limits, obj_text, units};

@@ -5,10 +5,11 @@
 use crate::controls::anatomy::Landmarks;
 use crate::controls::eyelid::eye_lids;
 use crate::controls::force_controls::{
-    cheek_puff_traction, force_band_traction, is_force_control, mouth_xy, place_cheek_puff,
-    place_force_band, place_sphincter, sphincter_traction,
+    SPHINCTER_RING_MM, cheek_puff_traction, force_band_traction, is_force_control, mouth_xy,
+    place_cheek_puff, place_force_band, place_sphincter, sphincter_traction,
 };
 use crate::controls::jaw::{Jaw, JawMode};
+use crate::controls::lip_margin::{MARGINAL_RING_MM, marginal_traction};
 use crate::controls::muscle_kind::attachment;
 use crate::controls::muscle_kind::{Generator, MuscleKind, Side};
 use crate::controls::muscle_model::{AnatomicalParams, MuscleModel, band_pattern, place_band};
@@ -47,12 +48,17 @@ pub(crate) fn place_control(
         },
         // The jaw's elements are skull (rim) elements: [`Jaw::of`].
         Generator::Jaw(_) => (Vec::new(), Vec::new()),
-        Generator::Sphincter(lip) => place_sphincter(
+        // The sphincter's ring, or its marginal part's narrower one at the lip margin.
+        Generator::Sphincter(lip) | Generator::Marginal(lip) => place_sphincter(
             shell,
             skull,
             &mouth_xy(shell, loops),
             boxes.mouth.center().y,
             lip,
+            match kind.generator() {
+                Generator::Marginal(_) => MARGINAL_RING_MM,
+                _ => SPHINCTER_RING_MM,
+            },
             mm_per_unit,
         ),
         // The seal's response is a share of jaw_open's ([`crate::controls::lip_seal`]).
@@ -97,6 +103,7 @@ pub(crate) fn control_pattern(rig: RigParts<'_>, muscle: &Muscle) -> Vec<(u32, D
             Some(Generator::Sphincter(_)) => {
                 sphincter_traction(shell, loops, boxes, mm_per_unit, muscle)
             }
+            Some(Generator::Marginal(_)) => marginal_traction(shell, loops, mm_per_unit, muscle),
             Some(Generator::Force(_)) => {
                 force_band_traction(shell, loops, boxes, mm_per_unit, anatomical, muscle)
             }

@@ -1,7 +1,7 @@
 //! Force-driven controls: loads that push with a traction instead of prescribing a
 //! displacement: the muscles added after the thesis's ten (orbicularis oris, depressor anguli
 //! oris, corrugator, procerus, risorius, levator labii superioris alaeque nasi, zygomaticus
-//! minor, levator anguli oris, buccinator) and the cheek puff (air pressure inside the mouth).
+//! minor, levator anguli oris, buccinator, the lips' marginal part) and the cheek puff (air pressure inside the mouth).
 //!
 //! The rig is solved once (one LU) with one boundary-condition layout for every response: an
 //! element is either displacement-prescribed in every response (skull, and the bands of the
@@ -25,6 +25,7 @@
 //! ```
 
 use crate::controls::anatomy::{Attachment, Landmarks};
+use crate::controls::lip_margin::marginal_target;
 use crate::controls::muscle_kind::{Generator, Lip, attachment};
 use crate::controls::muscle_model::{
     AnatomicalParams, CONTOUR_TAPER_MM, MuscleModel, band_pattern, band_weight, contour_weight,
@@ -67,8 +68,9 @@ pub(crate) fn place_force_band(
     place_band(shell, skull, att, mm_per_unit, &whole)
 }
 
-/// Places one half of the sphincter: the front and back elements (not rim, not skull) within
-/// [`SPHINCTER_RING_MM`] of the mouth loop (`mouth`, canonical x-y) in the front plane, above
+/// Places one half of the sphincter (`ring_mm` = [`SPHINCTER_RING_MM`]) or of its marginal
+/// part ([`crate::controls::lip_margin`]): the front and back elements (not rim, not skull)
+/// within `ring_mm` of the mouth loop (`mouth`, canonical x-y) in the front plane, above
 /// (`Lip::Upper`) or below the mouth's centre line `centre_y`, each chain ordered by its angle
 /// around the mouth.
 pub(crate) fn place_sphincter(
@@ -77,9 +79,10 @@ pub(crate) fn place_sphincter(
     mouth: &[DVec2],
     centre_y: f64,
     lip: Lip,
+    ring_mm: f64,
     mm_per_unit: f64,
 ) -> (Vec<u32>, Vec<u32>) {
-    let ring = SPHINCTER_RING_MM / mm_per_unit;
+    let ring = ring_mm / mm_per_unit;
     let (mut front, mut back) = (Vec::new(), Vec::new());
     if mouth.len() < 3 {
         return (front, back);
@@ -192,6 +195,7 @@ pub(crate) fn force_target(rig: RigParts<'_>, k: usize) -> Option<f64> {
         Generator::Sphincter(_) => {
             Some(SPHINCTER_STRAIN * strength * 0.5 * rig.boxes.mouth.width())
         }
+        Generator::Marginal(_) => Some(marginal_target(rig.boxes, strength)),
         Generator::Pressure => Some(CHEEK_PUFF_MM * strength / rig.mm_per_unit),
         Generator::Seal | Generator::Band(_) | Generator::Jaw(_) | Generator::Lid(_) => None,
     }

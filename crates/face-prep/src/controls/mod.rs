@@ -3,7 +3,8 @@
 //! - [`ids`]: the shared vocabulary (sides, jaw modes, lid actions); imports nothing.
 //! - [`muscle_kind`]: the table of controls, one row each (id, name, side, twin, generator).
 //! - one generator per kind: muscle bands from [`anatomy`] attachments ([`muscle_model`]),
-//!   force-driven bands and the sphincter ([`force_controls`]), the modiolus pins
+//!   force-driven bands and the sphincter ([`force_controls`]), the lips' marginal part that
+//!   rolls them in ([`lip_margin`]), the modiolus pins
 //!   ([`modiolus`]), the jaw's rigid modes ([`jaw`]), the lip seal over the open jaw ([`lip_seal`]), the lids ([`eyelid`]), the teeth the deep
 //!   layer slides on ([`teeth`]); the thesis's ten muscles ([`muscles`]) and its muscle file
 //!   format ([`muscle_file`]).
@@ -18,6 +19,7 @@ pub mod eyelid;
 pub mod force_controls;
 pub mod ids;
 pub mod jaw;
+pub mod lip_margin;
 pub mod lip_seal;
 pub mod modiolus;
 pub mod muscle_file;

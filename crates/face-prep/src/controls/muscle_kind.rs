@@ -85,6 +85,10 @@ pub enum Generator {
     /// One half of the orbicularis oris sphincter, force-driven like [`Generator::Force`]: a
     /// ring of tissue around the mouth pulled toward the mouth's centre and forward (pucker).
     Sphincter(Lip),
+    /// The marginal part of one lip's orbicularis oris ([`crate::controls::lip_margin`]),
+    /// force-driven like [`Generator::Force`]: the vermilion ring pulled back toward the dental
+    /// arch's centre (the lip rolls in over the teeth).
+    Marginal(Lip),
     /// The lip seal ([`crate::controls::lip_seal`]): no elements and no load of its own; its
     /// response is `jaw_open`'s solved response times minus a share that is 1 at the lower lip's
     /// margin, so added to `jaw_open` it takes the lower lip back up (ARKit's `mouthClose`).
@@ -155,7 +159,7 @@ macro_rules! controls {
     };
 }
 
-use Generator::{Band, Force, Jaw, Lid, Pressure, Seal, Sphincter};
+use Generator::{Band, Force, Jaw, Lid, Marginal, Pressure, Seal, Sphincter};
 
 controls! {
     /// Frontalis, face's left.
@@ -287,6 +291,14 @@ controls! {
     /// Orbicularis oculi, orbital part over the malar cheek, face's right.
     OrbicularisOculiMalarR = ("orbicularis_oculi_malar_r", "Orbicularis oculi (malar) R", Right,
         OrbicularisOculiMalarL, Anatomical, Force(anatomy::orbicularis_oculi_malar)),
+    /// Orbicularis oris, marginal part of the upper lip: rolls the upper lip in.
+    OrbicularisOrisMarginalUpper = ("orbicularis_oris_marginal_upper",
+        "Orbicularis oris (marginal) upper", Center, OrbicularisOrisMarginalUpper, Anatomical,
+        Marginal(Lip::Upper)),
+    /// Orbicularis oris, marginal part of the lower lip: rolls the lower lip in.
+    OrbicularisOrisMarginalLower = ("orbicularis_oris_marginal_lower",
+        "Orbicularis oris (marginal) lower", Center, OrbicularisOrisMarginalLower, Anatomical,
+        Marginal(Lip::Lower)),
 }
 
 impl MuscleKind {
@@ -361,18 +373,22 @@ impl MuscleKind {
             | Generator::Pressure
             | Generator::Lid(_)
             | Generator::Sphincter(_)
+            | Generator::Marginal(_)
             | Generator::Seal => None,
         }
     }
 
     /// Whether this control is force-driven ([`Generator::Force`], [`Generator::Sphincter`],
-    /// [`Generator::Pressure`]):
+    /// [`Generator::Marginal`], [`Generator::Pressure`]):
     /// its elements carry a traction in its own response and are free in every other one
     /// ([`crate::controls::force_controls`]).
     pub fn is_force(self) -> bool {
         matches!(
             self.generator(),
-            Generator::Force(_) | Generator::Sphincter(_) | Generator::Pressure
+            Generator::Force(_)
+                | Generator::Sphincter(_)
+                | Generator::Marginal(_)
+                | Generator::Pressure
         )
     }
 }

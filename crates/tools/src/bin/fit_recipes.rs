@@ -25,7 +25,9 @@
 //! - The jaw's targets keep their kinematic recipes; the cheek-puff pressure is used only by
 //!   `cheekPuff`; the jaw controls are not used by the other targets (a lip target that opens
 //!   the jaw would double the jaw when added to `jawOpen`), nor the lip seal, whose size is the
-//!   jaw's opening (it is `mouthClose`'s recipe).
+//!   jaw's opening (it is `mouthClose`'s recipe); each lip's marginal orbicularis oris only
+//!   that lip's roll (it curls the lip in: anywhere else it folds the lip margins over); the
+//!   rolls (FACS's lip suck, AU28) not the muscles of the mouth corner (`MODIOLUS`).
 //! - Minimised: Σ over the narrow face's vertices of |response − capture|² (mm²), solved by
 //!   projected coordinate descent on the normal equations (a convex box-constrained quadratic,
 //!   so the minimum is unique up to collinear controls), weights then rounded to 0.05 and those
@@ -263,12 +265,30 @@ fn field_of(
     out
 }
 
+/// The muscles that insert at the mouth corner (the modiolus), by id stem. The rolls do not use
+/// them: FACS's lip suck (AU28), which ARKit's rolls are, is the orbicularis oris's own action
+/// (Ekman, Friesen & Hager, *Facial Action Coding System*, 2002), and the corner muscles
+/// pulling against the curled lip fold its inside over at the corners.
+const MODIOLUS: [&str; 5] = [
+    "levator_anguli_oris",
+    "depressor_anguli_oris",
+    "buccinator",
+    "zygomaticus_major",
+    "risorius",
+];
+
 /// The unknowns of a target: each a list of (control, sign) moved together.
 fn unknowns(ids: &[String], name: &str) -> Vec<Vec<String>> {
     // The jaw and the lip seal (a corrective whose size is the jaw's opening) serve only their
-    // own targets, which keep their recipes; the cheek puff only cheekPuff.
+    // own targets, which keep their recipes; the cheek puff only cheekPuff; each lip's marginal
+    // part only that lip's roll (it curls the lip in; elsewhere it would fold the margins).
     let usable = |id: &str| {
-        !id.starts_with("jaw_") && id != "lip_seal" && (id != "cheek_puff" || name == "cheekPuff")
+        !id.starts_with("jaw_")
+            && id != "lip_seal"
+            && (id != "cheek_puff" || name == "cheekPuff")
+            && (id != "orbicularis_oris_marginal_upper" || name == "mouthRollUpper")
+            && (id != "orbicularis_oris_marginal_lower" || name == "mouthRollLower")
+            && !(name.starts_with("mouthRoll") && MODIOLUS.iter().any(|m| id.starts_with(m)))
     };
     let sided = name.ends_with("Left");
     let both = name == "mouthLeft";
