@@ -65,8 +65,8 @@ fn check_file(path: &std::path::Path, basis: &MuscleBasis) {
     // The ARKit and VRM names the two muscles can make come first (ARKit: browDownRight,
     // browInnerUp, browOuterUpRight, mouthSmileLeft; VRM: the facebem presets happy and
     // surprised, relaxed and ih; neutral, the base mesh, is left out, sad, which in this
-    // two-muscle rig is browInnerUp's frontalis_r at −0.45, and angry, its frontalis_r at
-    // +0.45: browInnerUp × −1), then the muscles' contractions that no named target already is
+    // two-muscle rig is browInnerUp's frontalis_r at −0.45, and angry, which uses neither
+    // muscle since the orbicularis oculi's brow part lowers its brows: all zero), then the muscles' contractions that no named target already is
     // (none: in this two-muscle rig VRM surprised is frontalis_r contracted) and the presets
     // that no VRM one is (the other four); every relax is −1 × a written target and left out.
     let first_own = 4 + 4;
@@ -94,7 +94,10 @@ fn check_file(path: &std::path::Path, basis: &MuscleBasis) {
     );
     assert_eq!(read.extras["sameAs"]["preset_happy"], "happy");
     assert_eq!(read.extras["sameAs"]["sad"], "browInnerUp");
-    assert_eq!(read.extras["negativeOf"]["angry"], "browInnerUp");
+    assert_eq!(
+        read.extras["leftOutTargets"]["angry"],
+        "all zero: the base mesh is this expression"
+    );
     assert_eq!(read.extras["sameAs"]["frontalis_r_contract"], "surprised");
     assert_eq!(read.extras["negativeOf"]["frontalis_r_relax"], "surprised");
     assert_eq!(

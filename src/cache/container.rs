@@ -43,7 +43,7 @@ pub const MAGIC: [u8; 8] = *b"FACEBEM\x1a";
 /// 30: closed mouths and eyes cut open; 31: the jaw carries the skin down to its lower border and
 /// the neck stays, [`face_prep::jaw::Jaw::carried`]; 32: the lip seal, a 38th control,
 /// [`face_prep::lip_seal`]; 33: the cheek raiser, `orbicularis_oculi_malar_l/_r`, controls 39 and 40).
-pub const FORMAT_VERSION: u32 = 34;
+pub const FORMAT_VERSION: u32 = 35;
 /// Size of the fixed header in bytes.
 pub const HEADER_LEN: usize = 8 + 4 + 32 + 32 + 8 + 32;
 

@@ -220,9 +220,10 @@ pub(super) const NOSE_SNEER_LEFT: &[(&str, f64)] = &[
     ("orbicularis_oculi_malar_l", -1.00),
     ("orbicularis_oculi_orbital_l", -0.85),
     ("levator_anguli_oris_l", -0.75),
-    ("procerus", -0.60),
-    ("corrugator_supercilii_l", -0.55),
+    ("procerus", -0.55),
+    ("corrugator_supercilii_l", -0.35),
     ("mentalis_l", -0.30),
+    ("orbicularis_oculi_superior_l", -0.30),
     ("levator_labii_superioris_alaeque_nasi_l", -0.20),
 ];
 /// `noseSneerRight`.
@@ -231,8 +232,9 @@ pub(super) const NOSE_SNEER_RIGHT: &[(&str, f64)] = &[
     ("orbicularis_oculi_malar_r", -1.00),
     ("orbicularis_oculi_orbital_r", -0.85),
     ("levator_anguli_oris_r", -0.75),
-    ("procerus", -0.60),
-    ("corrugator_supercilii_r", -0.55),
+    ("procerus", -0.55),
+    ("corrugator_supercilii_r", -0.35),
     ("mentalis_r", -0.30),
+    ("orbicularis_oculi_superior_r", -0.30),
     ("levator_labii_superioris_alaeque_nasi_r", -0.20),
 ];

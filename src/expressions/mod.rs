@@ -358,7 +358,7 @@ pub const NOT_MODELLED: [(&str, &str); 13] = [
 /// further muscles), the only ids the definitions use. A rig has some of them (see the module
 /// docs). Slider signs: −1 contracts (jaw: opens, protrudes, shifts the chin to the face's left;
 /// eyelids: blink, squint, wide; orbicularis oris: pucker).
-pub const AGREED_CONTROL_IDS: [&str; 42] = [
+pub const AGREED_CONTROL_IDS: [&str; 44] = [
     "frontalis_l",
     "frontalis_r",
     "levator_labii_superioris_l",
@@ -401,6 +401,8 @@ pub const AGREED_CONTROL_IDS: [&str; 42] = [
     "orbicularis_oculi_malar_r",
     "orbicularis_oris_marginal_upper",
     "orbicularis_oris_marginal_lower",
+    "orbicularis_oculi_superior_l",
+    "orbicularis_oculi_superior_r",
 ];
 
 /// A named expression resolved for one rig, ready to export or pose.

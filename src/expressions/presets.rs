@@ -107,17 +107,18 @@ pub const ALL: [Preset; 9] = [
     Preset {
         name: "angry",
         action_units: "AU4 + AU7 + AU17 + AU24",
-        description: "brows down and together (corrugator, procerus; frontalis relaxed), lids \
-                      tightened, chin raised and lips pressed: fitted once by least squares \
-                      (`fit_recipes`) on the ICT face to the sum of ICT-FaceKit's captured \
-                      browDown, eyeSquint and mouthPress, left and right (cosine 0.59; the \
-                      hand-made preset with the upper lip raised had 0.19)",
+        description: "brows down and together (the orbicularis oculi's part over the brow, \
+                      corrugator, procerus), lids tightened, cheeks raised, chin raised and lips \
+                      pressed: fitted once by least squares (`fit_recipes`) on the ICT face to \
+                      the sum of ICT-FaceKit's captured browDown, eyeSquint and mouthPress, left \
+                      and right (cosine 0.73; before the brow part 0.59; the hand-made preset \
+                      with the upper lip raised had 0.19)",
         sliders: &[
-            ("frontalis_l", 0.45),
-            ("frontalis_r", 0.45),
-            ("corrugator_supercilii_l", -0.35),
-            ("corrugator_supercilii_r", -0.35),
-            ("procerus", -0.45),
+            ("orbicularis_oculi_superior_l", -1.0),
+            ("orbicularis_oculi_superior_r", -1.0),
+            ("corrugator_supercilii_l", -0.2),
+            ("corrugator_supercilii_r", -0.2),
+            ("procerus", -0.35),
             ("orbicularis_oculi_orbital_l", -1.0),
             ("orbicularis_oculi_orbital_r", -1.0),
             ("orbicularis_oculi_malar_l", -0.4),

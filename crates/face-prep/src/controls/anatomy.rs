@@ -316,3 +316,29 @@ pub(crate) fn orbicularis_oculi_malar(l: &Landmarks) -> Attachment {
         spread_mm: 0.0,
     }
 }
+
+/// Orbicularis oculi, orbital part over the brow (face's left): its upper fibres run round the
+/// orbit over the eyebrow from the medial palpebral ligament and the frontal process of the
+/// maxilla (with the depressor supercilii, its medial slip); contracting, they draw the whole
+/// brow down and toward the nose (AU4 with the corrugator and procerus; Gray's Anatomy, 41st
+/// ed., ch. 29; Ekman & Friesen, FACS manual, AU4). Modelled as a force-driven pull from the
+/// upper edge of the brow, 0.45 iod above the eye centre and 0.15 iod lateral of it, toward the
+/// medial orbital margin, 0.4 iod medial of the eye centre at its height, over a band 26 mm
+/// either side (the brow and the skin above it move as one sheet). The line runs about 39°
+/// below the horizontal, as ICT-FaceKit's captured browDown moves its brow (medial 0.69, down
+/// 0.56 over the vertices moving ≥ 90 % of its peak, 6.5 mm, 17–31 mm above the eye centre;
+/// half of the peak is still reached 43 mm above it); the shortening 0.17 of its length (0.71
+/// iod, about 45 mm on an adult face) moves the brow about 7.7 mm. Tried: narrower (16 mm,
+/// insertion 0.38 iod above the eye), browDown's fitted cosine 0.69, the motion too focal;
+/// inserted 0.5 iod above the eye, its band reached ICT 2500's forehead contour and turned a
+/// triangle over there.
+pub(crate) fn orbicularis_oculi_superior(l: &Landmarks) -> Attachment {
+    let eye = left_eye(l);
+    Attachment {
+        origin: DVec2::new(eye.x - 0.4 * l.iod, eye.y),
+        insertion: DVec2::new(eye.x + 0.15 * l.iod, eye.y + 0.45 * l.iod),
+        half_width_mm: 26.0,
+        max_strain: 0.17,
+        spread_mm: 0.0,
+    }
+}

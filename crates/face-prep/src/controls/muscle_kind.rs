@@ -299,6 +299,12 @@ controls! {
     OrbicularisOrisMarginalLower = ("orbicularis_oris_marginal_lower",
         "Orbicularis oris (marginal) lower", Center, OrbicularisOrisMarginalLower, Anatomical,
         Marginal(Lip::Lower)),
+    /// Orbicularis oculi, orbital part over the brow, face's left: draws the brow down and in.
+    OrbicularisOculiSuperiorL = ("orbicularis_oculi_superior_l", "Orbicularis oculi (brow) L",
+        Left, OrbicularisOculiSuperiorR, Anatomical, Force(anatomy::orbicularis_oculi_superior)),
+    /// Orbicularis oculi, orbital part over the brow, face's right.
+    OrbicularisOculiSuperiorR = ("orbicularis_oculi_superior_r", "Orbicularis oculi (brow) R",
+        Right, OrbicularisOculiSuperiorL, Anatomical, Force(anatomy::orbicularis_oculi_superior)),
 }
 
 impl MuscleKind {

@@ -201,8 +201,9 @@ fn print_emotions(
 /// corrective no combination of muscles at the neutral makes: its captured lower lip rises
 /// 38 mm; `face_prep::lip_seal`). And
 /// those whose fit failed a standing check on another face (measured 2026-11-29, the gain
-/// given up in brackets): browDown (0.52 → 0.54) moves ICT 13k's inner brow 2.96 mm, under
-/// the 3 mm of `tests/face_muscles.rs`; mouthPucker (0.74 → 0.76) narrows Lee Perry-Smith's
+/// given up in brackets): browDown (0.52 → 0.82 with the orbicularis oculi's brow part) moves
+/// ICT 2500's inner brow 2.86 mm down and in, under the 3 mm of `tests/face_muscles.rs` (ICT
+/// 13k's 4.4 mm); mouthPucker (0.74 → 0.76) narrows Lee Perry-Smith's
 /// mouth 19.4 %, under 20 %; mouthLeft / mouthRight (0.67 → 0.74) turn 13–28 triangles over
 /// on ICT 2500 and Lee Perry-Smith, over the 0.5 % of `tests/expression_sets.rs`.
 fn keeps_its_recipe(name: &str) -> bool {
