@@ -66,7 +66,8 @@ fn check_file(path: &std::path::Path, basis: &MuscleBasis) {
     // browInnerUp, browOuterUpRight, mouthSmileLeft; VRM: the facebem presets happy and
     // surprised, relaxed and ih; neutral, the base mesh, is left out, sad, which in this
     // two-muscle rig is browInnerUp's frontalis_r at −0.45, and angry, which uses neither
-    // muscle since the orbicularis oculi's brow part lowers its brows: all zero), then the muscles' contractions that no named target already is
+    // muscle since the orbicularis oculi's brow part lowers its brows: all zero), then the
+    // muscles' contractions that no named target already is
     // (none: in this two-muscle rig VRM surprised is frontalis_r contracted) and the presets
     // that no VRM one is (the other four); every relax is −1 × a written target and left out.
     let first_own = 4 + 4;

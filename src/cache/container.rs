@@ -42,7 +42,10 @@ pub const MAGIC: [u8; 8] = *b"FACEBEM\x1a";
 /// 29: the report says why a large face's edge-collapse copy was replaced by a remeshed one;
 /// 30: closed mouths and eyes cut open; 31: the jaw carries the skin down to its lower border and
 /// the neck stays, [`face_prep::jaw::Jaw::carried`]; 32: the lip seal, a 38th control,
-/// [`face_prep::lip_seal`]; 33: the cheek raiser, `orbicularis_oculi_malar_l/_r`, controls 39 and 40).
+/// [`face_prep::lip_seal`]; 33: the cheek raiser, `orbicularis_oculi_malar_l/_r`, controls 39 and 40;
+/// 34: the lips' marginal orbicularis oris, `orbicularis_oris_marginal_upper/_lower`, controls 41
+/// and 42; 35: the orbicularis oculi's part over the brow, `orbicularis_oculi_superior_l/_r`,
+/// controls 43 and 44).
 pub const FORMAT_VERSION: u32 = 35;
 /// Size of the fixed header in bytes.
 pub const HEADER_LEN: usize = 8 + 4 + 32 + 32 + 8 + 32;
