@@ -10,6 +10,7 @@ use crate::copy::Simplified;
 use crate::frame::CanonicalFace;
 use crate::transfer::SimplifiedFace;
 
+pub mod injective;
 mod lid_closure;
 pub mod untangle;
 
@@ -59,6 +60,7 @@ pub(crate) fn settle(
     }
     let lids_closed = closed_lids_fixed(mesh, rig, face, simplified.map(|s| &s.mesh));
     relax_each(mesh, rig, &lids_closed, displacements);
+    project_at_the_lips(mesh, rig, face, displacements);
     relax_sphincter_sum(mesh, rig, muscle_ids, &lids_closed, displacements);
     let fixed = beyond_lips_and_lids_fixed(mesh, rig, face, Forehead::Fixed);
     relax_each(mesh, rig, &fixed, displacements);
@@ -126,6 +128,42 @@ fn relax_each(mesh: &FaceMesh, rig: &FaceRig, fixed: &[bool], displacements: &mu
     // Each response on its own: in parallel, the same result as in sequence.
     displacements.par_iter_mut().for_each(|field| {
         untangle::relax_inversions(&mesh.vertices, &mesh.triangles, field, fixed, patch_radius);
+    });
+}
+
+/// Corrects every response within [`untangle::LIPS_MM`] of the mouth loop by
+/// [`injective::project`]: the smoothest change, spread over [`injective::SCREENING_MM`], that
+/// keeps the lips' triangles from turning over at full contraction and at full lengthening
+/// (both slider directions; the jaw's sideways field is `jawLeft` one way and `jawRight` the
+/// other). The outer contour, the eye loops and the mouth corners keep their values, and so
+/// does everything farther from the lips. A response that folds nothing there is left exactly
+/// as it is.
+///
+/// On the four bundled faces it takes every control's turned triangles at the lips to none
+/// (ICT 13k's `jaw_forward` 40, `jaw_open` 24, the sphincter's lower half 38; ICT 2500's 7, 4
+/// and 6), the lip seal's from 364 / 56 / 52 / 23 to 141 / 22 / 36 / 18 (ICT 13k / ICT 2500 /
+/// Lee Perry-Smith / MediaPipe), and no preset's up (`cargo run --release -p facebem-tools
+/// --bin flip_report`).
+fn project_at_the_lips(
+    mesh: &FaceMesh,
+    rig: &FaceRig,
+    face: &CanonicalFace,
+    displacements: &mut [Vec<DVec3>],
+) {
+    use rayon::prelude::*;
+    let (mouth, _, _) = front_loops(&face.loops, &face.points);
+    let lips = untangle::LIPS_MM / rig.mm_per_unit();
+    let mut fixed: Vec<bool> = face
+        .points
+        .iter()
+        .map(|p| face_prep::muscle_model::distance_to_loop(p.truncate(), &mouth) > lips)
+        .collect();
+    fix_contours_and_corners(&mut fixed, &face.loops, &face.points);
+    let screening = injective::SCREENING_MM / rig.mm_per_unit();
+    let surface = injective::Surface::new(&mesh.vertices, &mesh.triangles, &fixed, screening);
+    let params = injective::ProjectionParams::default();
+    displacements.par_iter_mut().for_each(|field| {
+        injective::project(&surface, &params, field);
     });
 }
 
