@@ -107,9 +107,9 @@ pub struct Surface<'a> {
 }
 
 impl<'a> Surface<'a> {
-    /// Prepares `vertices` and `triangles` (every index in range) with the vertices flagged in
-    /// `fixed` held and the screening length `screening` (mesh units). A vertex missing from
-    /// `fixed` is free; a triangle with an index out of range is left out.
+    /// Prepares `vertices` and `triangles` with the vertices flagged in `fixed` held and the
+    /// screening length `screening` (mesh units). A vertex missing from `fixed` is free; a
+    /// triangle with an index out of range is left out.
     pub fn new(
         vertices: &'a [DVec3],
         triangles: &'a [[u32; 3]],
@@ -243,24 +243,35 @@ pub fn project(surface: &Surface<'_>, params: &ProjectionParams, field: &mut [DV
 /// Index among the unknowns of each free vertex within `4 L` of a penalised triangle's
 /// centroid (`usize::MAX`: not an unknown), and how many there are.
 fn free_near(s: &Surface<'_>, penalised: &[usize]) -> (Vec<usize>, usize) {
-    let centres: Vec<DVec3> = penalised
-        .iter()
-        .map(|&t| {
-            s.triangles[t]
-                .iter()
-                .map(|&v| s.vertices[v as usize])
-                .sum::<DVec3>()
-                / 3.0
+    let reach = 4.0 * s.screening;
+    // The centroids binned in cubes of side `reach`: a vertex within `reach` of one lies in
+    // its own cube or one of the 26 around it, so each vertex looks at a few centroids.
+    let cell = |p: DVec3| (p / reach).floor().as_i64vec3();
+    let mut bins: std::collections::HashMap<glam::I64Vec3, Vec<DVec3>> =
+        std::collections::HashMap::new();
+    for &t in penalised {
+        let centre = s.triangles[t]
+            .iter()
+            .map(|&v| s.vertices[v as usize])
+            .sum::<DVec3>()
+            / 3.0;
+        bins.entry(cell(centre)).or_default().push(centre);
+    }
+    let near = |p: DVec3| {
+        let c = cell(p);
+        (-1..=1).any(|dx| {
+            (-1..=1).any(|dy| {
+                (-1..=1).any(|dz| {
+                    bins.get(&c.wrapping_add(glam::I64Vec3::new(dx, dy, dz)))
+                        .is_some_and(|b| b.iter().any(|q| q.distance_squared(p) <= reach * reach))
+                })
+            })
         })
-        .collect();
-    let reach2 = (4.0 * s.screening).powi(2);
+    };
     let mut index = vec![usize::MAX; s.vertices.len()];
     let mut m = 0;
     for (v, p) in s.vertices.iter().enumerate() {
-        if s.fixed.get(v).copied().unwrap_or(false) {
-            continue;
-        }
-        if centres.iter().any(|q| q.distance_squared(*p) <= reach2) {
+        if !s.fixed.get(v).copied().unwrap_or(false) && near(*p) {
             index[v] = m;
             m += 1;
         }
