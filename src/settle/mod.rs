@@ -151,14 +151,7 @@ fn project_at_the_lips(
     displacements: &mut [Vec<DVec3>],
 ) {
     use rayon::prelude::*;
-    let (mouth, _, _) = front_loops(&face.loops, &face.points);
-    let lips = untangle::LIPS_MM / rig.mm_per_unit();
-    let mut fixed: Vec<bool> = face
-        .points
-        .iter()
-        .map(|p| face_prep::muscle_model::distance_to_loop(p.truncate(), &mouth) > lips)
-        .collect();
-    fix_contours_and_corners(&mut fixed, &face.loops, &face.points);
+    let fixed = untangle_fixed(mesh, rig, face);
     let screening = injective::SCREENING_MM / rig.mm_per_unit();
     let surface = injective::Surface::new(&mesh.vertices, &mesh.triangles, &fixed, screening);
     let params = injective::ProjectionParams::default();
