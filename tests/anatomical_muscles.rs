@@ -247,7 +247,8 @@ fn the_default_face_turns_no_triangle_over() {
 /// 1 500-triangle copy), before the shell's vertex values were fitted linearly
 /// (`bem_core::element_to_vertex_linear`) and the forehead relaxed; ICT 13k's `disgust` turned
 /// 16 upper-lid triangles over, 81 mm from the lips (the frontalis lengthened by 0.3), before
-/// the half-lengthened direction was relaxed over the lids (`relaxation::relax_each_guarded`);
+/// the half-lengthened direction was relaxed over the lids (a pass replaced since by
+/// `settle::project_at_the_lids`);
 /// earlier, ICT 13k turned one 22 mm and Lee Perry-Smith one 14 mm from the lips.
 #[test]
 fn other_faces_flip_only_at_the_lips() {

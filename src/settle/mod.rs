@@ -26,9 +26,10 @@ pub(crate) struct Simulation<'a> {
 
 /// Runs every settling pass on `displacements` (one field per control of `rig`, on `mesh`'s
 /// vertices, named `muscle_ids`), in order: the lips relaxed, squints kept open and blinks
-/// closed, the lids and lips relaxed again, the sphincter's sum, the mid and lower face, the
-/// forehead in both slider directions, the lids and forehead, and the brow lowerers in their
-/// combinations; last, the lip seal made again from the settled jaw.
+/// closed, the lids and lips relaxed again, the lips' orientation kept ([`injective`]), the
+/// sphincter's sum, the mid and lower face, the forehead in both slider directions, the lids'
+/// orientation kept ([`injective`]), and the brow lowerers in their combinations; last, the lip
+/// seal made again from the settled jaw.
 pub(crate) fn settle(
     mesh: &FaceMesh,
     rig: &FaceRig,
@@ -80,14 +81,7 @@ pub(crate) fn settle(
         Direction::HalfLengthened,
         displacements,
     );
-    let lids_and_forehead_free = above_the_eyes_fixed(rig, face);
-    relax_each_guarded(
-        mesh,
-        rig,
-        &lids_and_forehead_free,
-        Direction::HalfLengthened,
-        displacements,
-    );
+    project_at_the_lids(mesh, rig, face, displacements);
     relax_brow_lowerers(mesh, rig, face, muscle_ids, displacements);
     seal_from_settled_jaw(mesh, rig, face, peeled, displacements);
 }
@@ -150,14 +144,73 @@ fn project_at_the_lips(
     face: &CanonicalFace,
     displacements: &mut [Vec<DVec3>],
 ) {
-    use rayon::prelude::*;
     let fixed = untangle_fixed(mesh, rig, face);
-    let screening = injective::SCREENING_MM / rig.mm_per_unit();
-    let surface = injective::Surface::new(&mesh.vertices, &mesh.triangles, &fixed, screening);
     let params = injective::ProjectionParams::default();
+    project_each(mesh, rig, &fixed, &params, displacements);
+}
+
+/// [`injective::project`] on every response (in parallel: each on its own), moving only the
+/// vertices not in `fixed`.
+fn project_each(
+    mesh: &FaceMesh,
+    rig: &FaceRig,
+    fixed: &[bool],
+    params: &injective::ProjectionParams,
+    displacements: &mut [Vec<DVec3>],
+) {
+    use rayon::prelude::*;
+    let screening = injective::SCREENING_MM / rig.mm_per_unit();
+    let surface = injective::Surface::new(&mesh.vertices, &mesh.triangles, fixed, screening);
     displacements.par_iter_mut().for_each(|field| {
-        injective::project(&surface, &params, field);
+        injective::project(&surface, params, field);
     });
+}
+
+/// Corrects every response within [`untangle::LIDS_MM`] of an eye loop by [`injective::project`],
+/// as [`project_at_the_lips`] does at the lips: the smoothest change that keeps the lids'
+/// triangles from turning over at full contraction and at half lengthening. The eye loops
+/// (closed exactly by the blink), the outer contour and the mouth corners keep their values, and
+/// so does everything farther from the eyes. Half lengthening, not full: named expressions
+/// lengthen a muscle by at most half (`browDownLeft`'s frontalis), and holding the lids at a
+/// full lengthening that nothing uses moved ICT 2500's lateral frontalis 30 mm at the lid (the
+/// penalty's smoothest correction of a fold no expression makes).
+///
+/// It replaced a relaxation pass over the lids and forehead at half lengthening. Every blink
+/// then turns no triangle over on the four bundled faces (ICT 13k's `blink` 50, each
+/// `eyeBlink*` 25; ICT 2500's 9 and 6 / 3; Lee Perry-Smith's 6 and 3 / 3; MediaPipe's 2 and
+/// 1 / 1; `cargo run --release -p facebem-tools --bin flip_report -- --named`). It runs before
+/// the brow lowerers' pass, which relaxes the corrugator in its combination with the fields
+/// as corrected here (run after it, `browDownLeft` turned 1–2 triangles over beside the inner
+/// canthus on ICT 13k and Lee Perry-Smith).
+fn project_at_the_lids(
+    mesh: &FaceMesh,
+    rig: &FaceRig,
+    face: &CanonicalFace,
+    displacements: &mut [Vec<DVec3>],
+) {
+    let fixed = lids_fixed(mesh, rig, face);
+    let params = injective::ProjectionParams {
+        slider_values: [-1.0, 0.5],
+        ..Default::default()
+    };
+    project_each(mesh, rig, &fixed, &params, displacements);
+}
+
+/// Vertices [`project_at_the_lids`] leaves as they are: everything farther than
+/// [`untangle::LIDS_MM`] from both eye loops, the outer contour, the eye loops and the mouth
+/// corners.
+fn lids_fixed(mesh: &FaceMesh, rig: &FaceRig, face: &CanonicalFace) -> Vec<bool> {
+    let (loops, canonical) = (&face.loops, &face.points);
+    let (_, eye_l, eye_r) = front_loops(loops, canonical);
+    let reach = untangle::LIDS_MM / rig.mm_per_unit();
+    let distance = face_prep::muscle_model::distance_to_loop;
+    let mut fixed = vec![true; mesh.vertices.len()];
+    for (f, p) in fixed.iter_mut().zip(canonical) {
+        let p = p.truncate();
+        *f = distance(p, &eye_l).min(distance(p, &eye_r)) > reach;
+    }
+    fix_contours_and_corners(&mut fixed, loops, canonical);
+    fixed
 }
 
 /// Which way a response is relaxed by [`relax_each_guarded`].
@@ -185,9 +238,8 @@ enum Direction {
 /// turned one over 9 mm above the eye loop, from the frontalis lengthened by half (the
 /// half-lengthened pass over the forehead; relaxed at full value there instead, MediaPipe's
 /// brow raise fell from 10.6 to 7.5 mm). ICT 13k's `disgust` (the frontalis lengthened by 0.3)
-/// turned 16 upper-lid triangles over, 6–7 mm above the eye loops (the half-lengthened pass
-/// over the lids and forehead; run alone, without the forehead pass before it, it left ICT
-/// 2500's `browDownLeft` one turned triangle 12 mm above the eye).
+/// turned 16 upper-lid triangles over, 6–7 mm above the eye loops (a half-lengthened pass over
+/// the lids and forehead, replaced since by [`project_at_the_lids`]: none there).
 fn relax_each_guarded(
     mesh: &FaceMesh,
     rig: &FaceRig,
