@@ -22,7 +22,9 @@
 //! It is minimised by Gauss–Newton steps (the ratios linearised at the current shape, §10.3
 //! there), each one sparse Cholesky solve (`faer`) over the free vertices within `4 L` of a
 //! penalised triangle (farther, the screened correction has decayed to under 2 %), with a
-//! backtracking line search that accepts a step only if `E` decreases (§3.1).
+//! backtracking line search that accepts a step only if `E` decreases (§3.1). A step moves
+//! only those unknowns, so it evaluates only the triangles touching them: the part of `E` that
+//! can change, and the ratios it can change.
 //!
 //! What it guarantees: `E` decreases at every step; a field under which no triangle's ratio
 //! falls under `a₀ / 2` is returned exactly as it was; the fixed vertices keep their values;
@@ -184,17 +186,29 @@ impl<'a> Surface<'a> {
             .count()
     }
 
-    /// The energy `E` ([the module](self)) of the correction `field − original`.
-    fn energy(&self, params: &ProjectionParams, original: &[DVec3], field: &[DVec3]) -> f64 {
+    /// The part of the energy `E` ([the module](self)) of the correction `field − original`
+    /// that moves with the unknowns `index`: the screening terms of the unknowns and every term
+    /// of the triangles `touched` (those with an unknown corner). The rest of `E` stays as it
+    /// is while only the unknowns move, so comparing this part compares `E`.
+    fn local_energy(
+        &self,
+        params: &ProjectionParams,
+        original: &[DVec3],
+        field: &[DVec3],
+        index: &[usize],
+        touched: &[usize],
+    ) -> f64 {
         let inv_l2 = 1.0 / (self.screening * self.screening);
         let c = |v: u32| field[v as usize] - original[v as usize];
         let mut e: f64 = (0..field.len())
+            .filter(|&v| index[v] != usize::MAX)
             .map(|v| 0.5 * self.area[v] * inv_l2 * c(v as u32).length_squared())
             .sum();
-        for (t, tri) in self.triangles.iter().enumerate() {
+        for &t in touched {
             if self.normals[t].1.is_nan() || self.normals[t].1 <= 0.0 {
                 continue;
             }
+            let tri = self.triangles[t];
             for (k, &(a, b)) in EDGES.iter().enumerate() {
                 e += 0.5 * self.weights[t][k] * (c(tri[a]) - c(tri[b])).length_squared();
             }
@@ -208,6 +222,19 @@ impl<'a> Surface<'a> {
         }
         e
     }
+
+    /// The triangles with a corner among the unknowns `index`, in order.
+    fn touched(&self, index: &[usize]) -> Vec<usize> {
+        let mut touched = vec![false; self.triangles.len()];
+        for (v, &i) in index.iter().enumerate() {
+            if i != usize::MAX {
+                for &t in &self.around[v] {
+                    touched[t as usize] = true;
+                }
+            }
+        }
+        (0..touched.len()).filter(|&t| touched[t]).collect()
+    }
 }
 
 /// Corrects `field` (one displacement per vertex of `surface`) in place by the method of [the
@@ -219,10 +246,12 @@ pub fn project(surface: &Surface<'_>, params: &ProjectionParams, field: &mut [DV
         return s.turned(field);
     }
     let original = field.to_vec();
+    // Each triangle's lowest ratio; a step moves only the unknowns, so only the triangles
+    // touching them change.
+    let mut lowest: Vec<f64> = (0..s.triangles.len())
+        .map(|t| s.lowest_ratio(t, field, params))
+        .collect();
     for _ in 0..params.max_steps {
-        let lowest: Vec<f64> = (0..s.triangles.len())
-            .map(|t| s.lowest_ratio(t, field, params))
-            .collect();
         if lowest.iter().all(|&a| a >= 0.5 * params.min_area_ratio) {
             break;
         }
@@ -230,11 +259,15 @@ pub fn project(surface: &Surface<'_>, params: &ProjectionParams, field: &mut [DV
             .filter(|&t| lowest[t] < params.min_area_ratio)
             .collect();
         let index = free_near(s, &penalised);
-        let Some(step) = gauss_newton_step(s, params, &original, field, &index) else {
+        let touched = s.touched(&index.0);
+        let Some(step) = gauss_newton_step(s, params, &original, field, &index, &touched) else {
             break;
         };
-        if !line_search(s, params, &original, field, &index, &step) {
+        if !line_search(s, params, &original, field, &index.0, &touched, &step) {
             break;
+        }
+        for &t in &touched {
+            lowest[t] = s.lowest_ratio(t, field, params);
         }
     }
     s.turned(field)
@@ -279,7 +312,8 @@ fn free_near(s: &Surface<'_>, penalised: &[usize]) -> (Vec<usize>, usize) {
     (index, m)
 }
 
-/// One Gauss–Newton step for the unknowns `index` ([`free_near`]): the solution of
+/// One Gauss–Newton step for the unknowns `index` ([`free_near`]), whose triangles are
+/// `touched` ([`Surface::touched`]): the solution of
 /// `H δ = −∇E` with `H` the screening and smoothness terms plus the penalty's `μ A_t g gᵀ` of
 /// the linearised ratios. `None` when there is nothing to move or the factorisation fails.
 fn gauss_newton_step(
@@ -288,6 +322,7 @@ fn gauss_newton_step(
     original: &[DVec3],
     field: &[DVec3],
     (index, m): &(Vec<usize>, usize),
+    touched: &[usize],
 ) -> Option<Mat<f64>> {
     let m = *m;
     if m == 0 {
@@ -298,7 +333,6 @@ fn gauss_newton_step(
     let inv_l2 = 1.0 / (s.screening * s.screening);
     let mut entries: Vec<Triplet<usize, usize, f64>> = Vec::new();
     let mut grad = Mat::<f64>::zeros(3 * m, 1);
-    let mut touched = vec![false; s.triangles.len()];
     for (v, &i) in index.iter().enumerate() {
         if i == usize::MAX {
             continue;
@@ -307,14 +341,9 @@ fn gauss_newton_step(
             entries.push(Triplet::new(3 * i + d, 3 * i + d, s.area[v] * inv_l2));
             grad[(3 * i + d, 0)] += s.area[v] * inv_l2 * c[v][d];
         }
-        for &t in &s.around[v] {
-            touched[t as usize] = true;
-        }
     }
-    for (t, tri) in s.triangles.iter().enumerate() {
-        if !touched[t] {
-            continue;
-        }
+    for &t in touched {
+        let tri = &s.triangles[t];
         for (k, &(a, b)) in EDGES.iter().enumerate() {
             let w = s.weights[t][k];
             let (i, j) = (unknown(tri[a]), unknown(tri[b]));
@@ -397,10 +426,11 @@ fn line_search(
     params: &ProjectionParams,
     original: &[DVec3],
     field: &mut [DVec3],
-    (index, _): &(Vec<usize>, usize),
+    index: &[usize],
+    touched: &[usize],
     step: &Mat<f64>,
 ) -> bool {
-    let before = s.energy(params, original, field);
+    let before = s.local_energy(params, original, field, index, touched);
     let start = field.to_vec();
     let mut length = 1.0;
     for _ in 0..12 {
@@ -410,7 +440,7 @@ fn line_search(
                 field[v] = start[v] + length * d;
             }
         }
-        if s.energy(params, original, field) < before {
+        if s.local_energy(params, original, field, index, touched) < before {
             return true;
         }
         length *= 0.5;
