@@ -105,15 +105,14 @@ fn restore_bow_ties(triangles: &[[u32; 3]], kept: &mut [bool], vertex_count: usi
     }
 }
 
-/// Jacobi sweeps of [`hang_from_margins`].
-pub const HANG_ITERATIONS: usize = 200;
-
 /// Displacements of peeled (rolled-in) vertices as the harmonic extension of the simulated
 /// surface's displacements over the peeled flaps: each peeled vertex ends at the mean of its
-/// neighbours, the simulated vertices held ([`HANG_ITERATIONS`] Jacobi sweeps, starting from the
-/// field as given, e.g. the closest margin point's). A flap thus hangs smoothly from its
-/// margin; taking each vertex's closest margin point alone folded the triangles of the mouth
-/// corners, where the upper and lower lip margins meet and move differently.
+/// neighbours over the triangles' edges (an edge of two triangles counted twice), the simulated
+/// vertices held, solved exactly ([`face_prep::harmonic::extend`]); a flap that touches no
+/// simulated vertex keeps the field as given (e.g. the closest margin point's). A flap thus
+/// hangs smoothly from its margin; taking each vertex's closest margin point alone folded the
+/// triangles of the mouth corners, where the upper and lower lip margins meet and move
+/// differently.
 ///
 /// ```
 /// use glam::DVec3;
@@ -134,34 +133,13 @@ pub fn hang_from_margins(field: &mut [DVec3], triangles: &[[u32; 3]], peeled: &[
             *p = true;
         }
     }
-    let mut neighbours: Vec<Vec<u32>> = vec![Vec::new(); n];
-    for t in triangles {
-        for k in 0..3 {
-            let (a, b) = (t[k] as usize, t[(k + 1) % 3] as usize);
-            if a < n && b < n {
-                if is_peeled[a] {
-                    neighbours[a].push(b as u32);
-                }
-                if is_peeled[b] {
-                    neighbours[b].push(a as u32);
-                }
-            }
-        }
-    }
-    for _ in 0..HANG_ITERATIONS {
-        let next: Vec<(u32, DVec3)> = peeled
-            .iter()
-            .filter(|&&v| (v as usize) < n && !neighbours[v as usize].is_empty())
-            .map(|&v| {
-                let nb = &neighbours[v as usize];
-                let sum: DVec3 = nb.iter().map(|&u| field[u as usize]).sum();
-                (v, sum / nb.len() as f64)
-            })
-            .collect();
-        for (v, d) in next {
-            field[v as usize] = d;
-        }
-    }
+    let edges: Vec<(u32, u32, f64)> = triangles
+        .iter()
+        .flat_map(|t| (0..3).map(move |k| (t[k], t[(k + 1) % 3], 1.0)))
+        .filter(|&(a, b, _)| (a as usize) < n && (b as usize) < n && a != b)
+        .collect();
+    // In range by construction; a failed factorisation leaves the field as given.
+    let _ = face_prep::harmonic::extend(&edges, &is_peeled, field);
 }
 
 #[cfg(test)]

@@ -371,13 +371,11 @@ fn flatten_turned(
 /// [`relax_inversions`]' third stage smooth.
 pub const PATCH_MM: f64 = 5.0;
 
-/// Jacobi sweeps of the third stage's harmonic smoothing.
-pub const PATCH_SWEEPS: usize = 400;
-
 /// The third stage of [`relax_inversions`], for folds a triangle at a time cannot even out:
 /// each connected patch of the triangles still turned, grown by [`PATCH_RINGS`] rings, takes
-/// the harmonic field (each free vertex at the mean of its neighbours) with the patch's rim
-/// as boundary, and keeps it only if fewer triangles in and around the patch are turned.
+/// the harmonic field (each free vertex at the mean of its neighbours, solved exactly by
+/// [`face_prep::harmonic::extend`]) with the patch's rim as boundary, and keeps it only if
+/// fewer triangles in and around the patch are turned.
 fn smooth_patches(
     neutral: &[DVec3],
     triangles: &[[u32; 3]],
@@ -472,19 +470,18 @@ fn smooth_patches(
             .filter(|&v| !is_fixed(v) && !neighbours[v].is_empty())
             .collect();
         let before: Vec<DVec3> = free.iter().map(|&v| field[v]).collect();
-        // Jacobi sweeps: unlike Gauss–Seidel, the result does not depend on the vertex order.
-        for _ in 0..PATCH_SWEEPS {
-            let means: Vec<DVec3> = free
-                .iter()
-                .map(|&v| {
-                    let nb = &neighbours[v];
-                    nb.iter().map(|&w| field[w as usize]).sum::<DVec3>() / nb.len() as f64
-                })
-                .collect();
-            for (&v, d) in free.iter().zip(means) {
-                field[v] = d;
-            }
+        let mut is_free = vec![false; n];
+        for &v in &free {
+            is_free[v] = true;
         }
+        // Each edge at a free vertex once (a pair of free vertices from the smaller one).
+        let edges: Vec<(u32, u32, f64)> = free
+            .iter()
+            .flat_map(|&v| neighbours[v].iter().map(move |&w| (v as u32, w, 1.0)))
+            .filter(|&(v, w, _)| !is_free[w as usize] || v < w)
+            .collect();
+        // Vertex indices in range by construction; a failed factorisation keeps the field.
+        let _ = face_prep::harmonic::extend(&edges, &is_free, field);
         if count(field) < before_count {
             for &v in &free {
                 moved[v] = true;

@@ -21,6 +21,7 @@ pub mod closest_point;
 pub mod controls;
 pub mod error;
 pub mod frame;
+pub mod harmonic;
 pub mod input;
 pub mod parts;
 mod rig;

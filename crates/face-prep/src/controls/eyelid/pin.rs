@@ -7,9 +7,6 @@ use std::collections::BinaryHeap;
 
 use super::EyeMargins;
 
-/// Gauss–Seidel sweeps of the harmonic spread of [`close_margins`].
-pub const SPREAD_SWEEPS: usize = 400;
-
 /// Makes the pose `positions + slider × field` close the lids exactly: every upper-margin vertex
 /// of each of `margins` (not a corner, not on any lower margin) lands on the lower-margin point
 /// of the same chord parameter ([`EyeMargins`]), where the lower margin itself lands in that pose. The
@@ -166,8 +163,8 @@ pub fn close_rolled_margins(
 }
 
 /// Sets `field` at each pinned vertex to its value and spreads the change over the mesh
-/// around them as a harmonic function (each free vertex the mean of its neighbours,
-/// [`SPREAD_SWEEPS`] Gauss–Seidel sweeps over the mesh's edges) that is zero at the `held`
+/// around them as a harmonic function (each free vertex the mean of its neighbours over the
+/// mesh's edges, solved exactly by [`crate::harmonic::extend`]) that is zero at the `held`
 /// vertices and at `radius` (mesh units, measured along the edges from the pinned vertices)
 /// and beyond: the skin next to a pinned margin follows it without a step.
 pub fn pin_and_spread(
@@ -200,18 +197,15 @@ pub fn pin_and_spread(
     }
     let neighbours = adjacency(n, triangles);
     let from_pins = edge_distances(positions, &neighbours, is_pin.iter().copied());
-    let free: Vec<usize> = (0..n)
-        .filter(|&v| !fixed[v] && from_pins[v] < radius)
-        .collect();
-    for _ in 0..SPREAD_SWEEPS {
-        for &v in &free {
-            let nb = &neighbours[v];
-            if !nb.is_empty() {
-                correction[v] =
-                    nb.iter().map(|&u| correction[u as usize]).sum::<DVec3>() / nb.len() as f64;
-            }
-        }
-    }
+    let is_free: Vec<bool> = (0..n).map(|v| !fixed[v] && from_pins[v] < radius).collect();
+    let free: Vec<usize> = (0..n).filter(|&v| is_free[v]).collect();
+    // The edges come from the triangles (in range by construction), so the solve cannot fail
+    // on them; a failed factorisation leaves the free vertices uncorrected.
+    let _ = crate::harmonic::extend(
+        &crate::harmonic::unit_edges(n, triangles),
+        &is_free,
+        &mut correction,
+    );
     for v in 0..n {
         if is_pin[v] {
             field[v] += correction[v];
@@ -329,6 +323,49 @@ mod tests {
         let mut lp: Vec<u32> = (3..=9).map(|x| idx(x, 6)).collect();
         lp.extend((4..=8).rev().map(|x| lower_of[&x]));
         (p, tris, lp)
+    }
+
+    /// The spread is converged, not a count of sweeps: on a 61 × 61 grid with one vertex
+    /// pinned in the middle and a reach of 30 edges, every free vertex ends at the mean of its
+    /// neighbours (to 1e-9 of the pin). The 400 Gauss–Seidel sweeps it replaced left errors of
+    /// 1.7e-6 there.
+    #[test]
+    fn the_spread_is_the_converged_harmonic_field() {
+        let n = 61u32;
+        let p: Vec<DVec3> = (0..n * n)
+            .map(|i| DVec3::new((i % n) as f64, (i / n) as f64, 0.0))
+            .collect();
+        let id = |x: u32, y: u32| y * n + x;
+        let mut tris = Vec::new();
+        for y in 0..n - 1 {
+            for x in 0..n - 1 {
+                tris.push([id(x, y), id(x + 1, y), id(x + 1, y + 1)]);
+                tris.push([id(x, y), id(x + 1, y + 1), id(x, y + 1)]);
+            }
+        }
+        let mut field = vec![DVec3::ZERO; p.len()];
+        let centre = id(30, 30);
+        pin_and_spread(&p, &tris, &mut field, &[(centre, DVec3::Z)], &[], 30.0);
+        assert_eq!(field[centre as usize], DVec3::Z);
+        let neighbours = adjacency(p.len(), &tris);
+        let from_pin = edge_distances(&p, &neighbours, (0..p.len()).map(|v| v == centre as usize));
+        let mut checked = 0;
+        for v in 0..p.len() {
+            if v == centre as usize || from_pin[v] >= 30.0 {
+                continue;
+            }
+            let nb = &neighbours[v];
+            let mean = nb.iter().map(|&u| field[u as usize]).sum::<DVec3>() / nb.len() as f64;
+            assert!(
+                (field[v] - mean).length() < 1e-9,
+                "vertex {v}: {} against {mean}",
+                field[v]
+            );
+            checked += 1;
+        }
+        assert!(checked > 1000, "{checked} free vertices");
+        // The spread reaches far: 20 edges out it still moves.
+        assert!(field[id(50, 30) as usize].z > 1e-3);
     }
 
     #[test]
